@@ -1,0 +1,232 @@
+//! Command-line parsing and the subcommands of spec/cli.md.
+
+use std::ffi::OsString;
+use std::io::Write;
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use stc_diagnostics::Code;
+
+use crate::driver::{self, MessageFormat, Options};
+use crate::sources;
+
+/// Exit statuses (spec/cli.md).
+pub const EXIT_OK: u8 = 0;
+pub const EXIT_ERRORS: u8 = 1;
+pub const EXIT_USAGE: u8 = 2;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "stc",
+    version,
+    about = "Compiler, analyser and runtime for IEC 61131-3 Structured Text"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Parse and analyse the sources.
+    Check {
+        #[command(flatten)]
+        common: Common,
+        /// Source files or directories (one project).
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+    },
+    /// Compile the sources to another form.
+    Build {
+        #[command(flatten)]
+        common: Common,
+        /// What to produce.
+        #[arg(long, value_enum)]
+        emit: Emit,
+        /// Output file or directory (text kinds go to stdout without it).
+        #[arg(short = 'o', long = "output")]
+        output: Option<PathBuf>,
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+    },
+    /// Explain a diagnostic code.
+    Explain {
+        /// A code such as E0301.
+        code: String,
+    },
+}
+
+#[derive(Args, Debug)]
+struct Common {
+    /// Diagnostics format.
+    #[arg(long = "message-format", value_enum, default_value_t = Format::Human)]
+    message_format: Format,
+    /// `-W error`: treat warnings as errors.
+    #[arg(short = 'W', value_enum, value_name = "error")]
+    warnings: Vec<WarningLevel>,
+    /// Language edition.
+    #[arg(long, value_enum, default_value_t = Std::Iec3)]
+    std: Std,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug)]
+enum Format {
+    Human,
+    Json,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug)]
+enum WarningLevel {
+    Error,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug)]
+enum Std {
+    Iec2,
+    Iec3,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+enum Emit {
+    Ast,
+    Ir,
+    Vmasm,
+    Bytecode,
+    C,
+    Netlist,
+}
+
+impl Common {
+    fn options(&self) -> Options {
+        Options {
+            format: match self.message_format {
+                Format::Human => MessageFormat::Human,
+                Format::Json => MessageFormat::Json,
+            },
+            warnings_as_errors: !self.warnings.is_empty(),
+            iec2: matches!(self.std, Std::Iec2),
+        }
+    }
+}
+
+/// Runs the command line and returns the exit status.
+pub fn main(args: Vec<OsString>) -> u8 {
+    let cli = match Cli::try_parse_from(args) {
+        Ok(c) => c,
+        Err(e) => {
+            let _ = e.print();
+            return if e.use_stderr() { EXIT_USAGE } else { EXIT_OK };
+        }
+    };
+    let mut out = std::io::stdout().lock();
+    let mut err = std::io::stderr().lock();
+    let outcome = driver::with_big_stack(move || run(cli));
+    let _ = out.write_all(outcome.stdout.as_bytes());
+    let _ = err.write_all(outcome.stderr.as_bytes());
+    if let Some((path, bytes)) = &outcome.file {
+        if let Err(e) = std::fs::write(path, bytes) {
+            let _ = writeln!(err, "error: cannot write {}: {e}", path.display());
+            return EXIT_USAGE;
+        }
+    }
+    outcome.status
+}
+
+/// What a command produced: text for the two streams, maybe a file, a status.
+#[derive(Default, Debug)]
+pub struct Outcome {
+    pub stdout: String,
+    pub stderr: String,
+    pub file: Option<(PathBuf, Vec<u8>)>,
+    pub status: u8,
+}
+
+fn usage_error(msg: impl std::fmt::Display) -> Outcome {
+    Outcome {
+        stderr: format!("error: {msg}\n"),
+        status: EXIT_USAGE,
+        ..Outcome::default()
+    }
+}
+
+fn run(cli: Cli) -> Outcome {
+    match cli.command {
+        Command::Explain { code } => explain(&code),
+        Command::Check { common, files } => {
+            let opts = common.options();
+            match load_and_parse(&files) {
+                Ok(parsed) => finish(&parsed, &opts, String::new()),
+                Err(e) => usage_error(e),
+            }
+        }
+        Command::Build {
+            common,
+            emit,
+            output,
+            files,
+        } => {
+            let opts = common.options();
+            let parsed = match load_and_parse(&files) {
+                Ok(p) => p,
+                Err(e) => return usage_error(e),
+            };
+            if driver::failed(&parsed.diagnostics, &opts) {
+                return finish(&parsed, &opts, String::new());
+            }
+            match emit {
+                Emit::Ast => {
+                    let text = emit_ast(&parsed);
+                    let mut o = finish(&parsed, &opts, String::new());
+                    match output {
+                        Some(path) => o.file = Some((path, text.into_bytes())),
+                        None => o.stdout = text,
+                    }
+                    o
+                }
+                other => {
+                    usage_error(format!("--emit {other:?} is not implemented yet").to_lowercase())
+                }
+            }
+        }
+    }
+}
+
+fn load_and_parse(files: &[PathBuf]) -> Result<driver::Parsed, sources::LoadError> {
+    let (sm, diags) = sources::load(files)?;
+    Ok(driver::parse(sm, diags))
+}
+
+/// Renders the diagnostics and picks the exit status.
+fn finish(parsed: &driver::Parsed, opts: &Options, stdout: String) -> Outcome {
+    Outcome {
+        stdout,
+        stderr: driver::render(&parsed.diagnostics, &parsed.sources, opts),
+        file: None,
+        status: if driver::failed(&parsed.diagnostics, opts) {
+            EXIT_ERRORS
+        } else {
+            EXIT_OK
+        },
+    }
+}
+
+fn emit_ast(parsed: &driver::Parsed) -> String {
+    let sm = &parsed.sources;
+    let several = sm.len() > 1;
+    let pos = |span: stc_diagnostics::Span| match sm.locate(span.lo) {
+        Some((f, lc)) if several => format!("{}:{}:{}", f.name, lc.line, lc.col),
+        Some((_, lc)) => format!("{}:{}", lc.line, lc.col),
+        None => "?".into(),
+    };
+    stc_syntax::dump::dump(&parsed.ast, &parsed.interner, Some(&pos))
+}
+
+fn explain(code: &str) -> Outcome {
+    match Code::parse(code) {
+        Some(c) => Outcome {
+            stdout: format!("{c}: {}\n\n{}\n", c.title(), c.explanation()),
+            ..Outcome::default()
+        },
+        None => usage_error(format!("unknown diagnostic code `{code}`")),
+    }
+}

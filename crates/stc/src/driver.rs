@@ -1,0 +1,89 @@
+//! The phases, run in order over one project, and the rendering of their
+//! diagnostics.
+
+use stc_diagnostics::{render_human, render_json, Diagnostic, SourceMap};
+use stc_syntax::ast::Ast;
+use stc_syntax::Interner;
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Default)]
+pub enum MessageFormat {
+    #[default]
+    Human,
+    Json,
+}
+
+/// Options shared by every subcommand that analyses sources.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Options {
+    pub format: MessageFormat,
+    pub warnings_as_errors: bool,
+    /// `--std iec2`: 2nd edition strictness.
+    pub iec2: bool,
+}
+
+/// A parsed project.
+pub struct Parsed {
+    pub sources: SourceMap,
+    pub interner: Interner,
+    pub ast: Ast,
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+/// Parses every file of the source map as one project.
+pub fn parse(sources: SourceMap, mut diagnostics: Vec<Diagnostic>) -> Parsed {
+    let mut interner = Interner::new();
+    let (ast, mut diags) = stc_syntax::parse_project(&sources, &mut interner);
+    diagnostics.append(&mut diags);
+    Parsed {
+        sources,
+        interner,
+        ast,
+        diagnostics,
+    }
+}
+
+/// Whether the diagnostics make the run fail (exit status 1).
+pub fn failed(diags: &[Diagnostic], opts: &Options) -> bool {
+    diags
+        .iter()
+        .any(|d| d.is_error() || opts.warnings_as_errors)
+}
+
+/// The diagnostics as text, in source order, in the requested format.
+pub fn render(diags: &[Diagnostic], sources: &SourceMap, opts: &Options) -> String {
+    let mut sorted: Vec<&Diagnostic> = diags.iter().collect();
+    sorted.sort_by_key(|d| d.span.lo);
+    let mut out = String::new();
+    for d in sorted {
+        let mut d = d.clone();
+        if opts.warnings_as_errors {
+            d.severity = stc_diagnostics::Severity::Error;
+        }
+        match opts.format {
+            MessageFormat::Human => {
+                out.push_str(&render_human(&d, sources));
+                out.push('\n');
+            }
+            MessageFormat::Json => {
+                out.push_str(&render_json(&d, sources));
+                out.push('\n');
+            }
+        }
+    }
+    out
+}
+
+/// Runs `f` on a thread with a large stack. The phases are recursive over
+/// trees whose depth the parser bounds; the bound is chosen so this stack is
+/// always enough, whatever the input.
+pub fn with_big_stack<T: Send>(f: impl FnOnce() -> T + Send) -> T {
+    const STACK: usize = 256 << 20;
+    std::thread::scope(|s| {
+        std::thread::Builder::new()
+            .stack_size(STACK)
+            .spawn_scoped(s, f)
+            .expect("cannot start the compiler thread")
+            .join()
+            .unwrap_or_else(|e| std::panic::resume_unwind(e))
+    })
+}

@@ -1,0 +1,359 @@
+//! The catalogue of diagnostic codes: the one source of truth for each code's
+//! severity, title and the explanation `stc explain` prints.
+//!
+//! Codes are stable: a code is never reused for another meaning. `docs/
+//! diagnostics.md` is the overview of the same table.
+
+use std::fmt;
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum CodeSeverity {
+    Error,
+    Warning,
+}
+
+macro_rules! codes {
+    ($($name:ident $sev:ident $title:literal $explain:literal;)*) => {
+        /// A stable diagnostic code.
+        #[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord)]
+        pub enum Code { $($name,)* }
+
+        impl Code {
+            pub const ALL: &'static [Code] = &[$(Code::$name,)*];
+
+            pub fn as_str(self) -> &'static str {
+                match self { $(Code::$name => stringify!($name),)* }
+            }
+
+            pub fn severity(self) -> CodeSeverity {
+                match self { $(Code::$name => CodeSeverity::$sev,)* }
+            }
+
+            /// A short description of the code.
+            pub fn title(self) -> &'static str {
+                match self { $(Code::$name => $title,)* }
+            }
+
+            /// The paragraph `stc explain` prints.
+            pub fn explanation(self) -> &'static str {
+                match self { $(Code::$name => $explain,)* }
+            }
+
+            /// Looks a code up by its name, case-insensitively (`e0301`).
+            pub fn parse(name: &str) -> Option<Code> {
+                Code::ALL.iter().copied().find(|c| c.as_str().eq_ignore_ascii_case(name))
+            }
+        }
+    };
+}
+
+impl fmt::Display for Code {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+codes! {
+    E0001 Error "invalid character"
+"A character appears that cannot start any token of Structured Text, for
+example `$`, `?` or a non-ASCII character outside a string or comment. Remove
+it, or put text in a string literal ('...') or a comment (* ... *).";
+    E0002 Error "unterminated comment"
+"A comment was opened with `(*` or `/*` but never closed before the end of the
+file. `(* ... *)` comments nest: every `(*` inside needs its own `*)`. The
+error points at where the unclosed comment starts.";
+    E0003 Error "unterminated string literal"
+"A string literal was opened with ' or \" but not closed on the same line. A
+quote inside a string is written `$'` (or `$\"` in a WSTRING), a line break
+`$N`. The error points at where the string starts.";
+    E0004 Error "unterminated pragma"
+"A pragma `{ ...` was opened but never closed with `}` before the end of the file.";
+    E0005 Error "invalid identifier"
+"IEC 61131-3 identifiers consist of ASCII letters, digits and single
+underscores: they must not contain two underscores in a row, must not end
+with an underscore and must not contain non-ASCII letters. Rename the
+identifier, for example `motor__on` to `motor_on`.";
+    E0006 Error "malformed numeric literal"
+"A number literal is not well formed: a digit that is not valid in its base
+(`2#102`, `16#FG`), a base other than 2, 8 or 16, a missing digit after a
+base, an exponent or an underscore, or letters glued to a number.";
+    E0007 Error "literal out of range"
+"A literal is too large to be represented: an integer beyond 64 bits, or a
+duration beyond the range of TIME/LTIME (about 106 751 days as 64-bit
+nanoseconds).";
+    E0008 Error "malformed date or time literal"
+"A duration, date, time-of-day or date-and-time literal is not well formed.
+Durations are written `T#1d2h3m4s5ms6us7ns` with units in decreasing order,
+a fraction only on the last unit (`T#1.5s`) and optional `_` between units;
+dates `D#2024-01-31`; times of day `TOD#12:30:15.5`; date and time
+`DT#2024-01-31-12:30:15`. Months run 1..12, days 1..31 (valid for the month),
+hours 0..23, minutes and seconds 0..59.";
+    E0009 Error "invalid escape in string literal"
+"In a string literal `$` starts an escape: `$$` (dollar), `$'` (quote), `$\"`
+(double quote), `$L` or `$N` (line feed), `$P` (form feed), `$R` (carriage
+return), `$T` (tab), `$hh` (a character code in two hex digits in a STRING)
+or `$hhhh` (four hex digits in a WSTRING). Anything else after `$` is an error.";
+    E0010 Error "invalid direct address"
+"A directly represented variable starts with `%`, then a location `I`
+(input), `Q` (output) or `M` (memory), an optional size `X` (bit), `B` (byte),
+`W` (word), `D` (double word) or `L` (long word), then one or more numbers
+separated by dots: `%IX0.3`, `%QW4`, `%MD12`, `%IX1.2.3`. In an `AT` clause
+of a function block or program, `%I*`, `%Q*` or `%M*` marks a location given
+later in VAR_CONFIG.";
+    E0020 Error "syntax error"
+"The parser expected something else at this point. The message says what was
+expected and what was found. Only the first error of a statement or
+declaration is reported; the parser then resumes at the next statement or
+declaration.";
+    E0021 Error "mismatched END keyword"
+"A block was closed by the END keyword of another kind of block, for example
+an IF closed by END_WHILE. The secondary label shows the block that is open.";
+    E0022 Error "reserved word used as a name"
+"A keyword or an elementary type name (IF, END_VAR, INT, TIME, DT, ...) cannot
+be used as the name of a variable, type or POU. Standard function names (MAX,
+LEN) and IL operators (LD, ST, S, R) are not reserved and may be used.";
+    E0023 Error "nesting too deep"
+"Expressions or statements are nested deeper than stc supports (for example
+thousands of nested parentheses). Split the expression with intermediate
+variables.";
+    E0030 Error "not supported yet"
+"The construct is valid in some IEC 61131-3 dialect but stc does not support
+it yet: Instruction List bodies, Sequential Function Charts, the
+object-oriented extensions (METHOD, PROPERTY, INTERFACE, EXTENDS, IMPLEMENTS),
+POINTER TO and REFERENCE TO, and `{attribute ...}` pragmas. The construct is
+skipped as a whole so the rest of the file is still checked.";
+    W0001 Warning "source is not UTF-8"
+"The file is not valid UTF-8, so it was read as Windows-1252, the encoding
+most PLC tools export. If the text looks wrong, convert the file to UTF-8.";
+    W0002 Warning "pragma ignored"
+"stc does not understand the content of this pragma `{ ... }` and ignores it.";
+
+    E0101 Error "undeclared variable"
+"The name is not declared as a variable of this POU. Inside a POU only its own
+variables are visible: a global variable must be declared in VAR_EXTERNAL to
+be used. Check the spelling, or declare the variable.";
+    E0102 Error "unknown type"
+"No data type, function block or elementary type has this name. Types are
+declared in a TYPE ... END_TYPE block, function blocks with FUNCTION_BLOCK.";
+    E0103 Error "unknown function or function block"
+"No function, function block type or standard function has this name.";
+    E0104 Error "no such member"
+"The structure has no member, or the function block no input or output, with
+this name.";
+    E0105 Error "duplicate declaration"
+"The name is already declared in the same scope (a variable twice in one POU,
+two POUs or types with the same name, two tasks of a resource). Names are
+case-insensitive: `Speed` and `SPEED` are the same name.";
+    E0106 Error "unknown task"
+"A program instance or function block is associated WITH a task that is not
+declared in the resource.";
+    E0107 Error "unknown program type"
+"A program instance in a configuration names a PROGRAM type that is not declared.";
+    E0108 Error "ambiguous enumeration value"
+"The value names a constant of several enumeration types and the context does
+not decide which one is meant. Write it qualified: `Type#value`.";
+    E0109 Error "no such enumeration value"
+"The enumeration type does not declare a value with this name.";
+    E0110 Error "not a variable"
+"The name refers to a type, a function, a function block type or a program,
+which cannot be used as a value here.";
+
+    E0201 Error "operand types do not fit the operator"
+"The operator is not defined for these operand types (for example `+` on BOOL,
+AND on REAL, or two operands of unrelated types). Convert an operand
+explicitly, for example with INT_TO_REAL.";
+    E0202 Error "condition is not BOOL"
+"The condition of IF, ELSIF, WHILE and REPEAT ... UNTIL must be of type BOOL.
+Compare the value explicitly, for example `IF count <> 0 THEN`.";
+    E0203 Error "CASE label of the wrong type"
+"Every CASE label must have the type of the selector: integer labels for an
+integer selector, values of the enumeration for an enumerated selector.";
+    E0204 Error "FOR loop types"
+"The FOR control variable must be a local integer variable, and the start,
+end and step expressions must have its type (or a type that widens to it).";
+    E0205 Error "array index is not an integer"
+"Array subscripts must be integer expressions.";
+    E0206 Error "not an array, or wrong number of indices"
+"Only arrays can be indexed, with one index per dimension: `a[i, j]` or
+`a[i][j]` for a two-dimensional array.";
+    E0207 Error "value has no members"
+"Member access `.name` applies to structures, function block instances and
+programs only.";
+    E0208 Error "initial value of the wrong type"
+"The initial value does not have the declared type of the variable, member or
+data type.";
+
+    E0301 Error "incompatible types in assignment"
+"The value has a type that cannot be stored in the target variable, and no
+implicit conversion exists between them. IEC 61131-3 is strongly typed: use an
+explicit conversion function such as BOOL_TO_INT or INT_TO_REAL.";
+    E0302 Error "implicit conversion may lose information"
+"A value would be converted implicitly to a type that cannot represent all its
+values (for example DINT to INT, LREAL to REAL, or a signed to an unsigned
+type). Only widening conversions that lose no information are implicit
+(SINT to INT, INT to REAL, REAL to LREAL, BYTE to WORD, ...); with
+`--std iec2` no conversion is implicit. Use the explicit conversion function
+named in the help.";
+    E0303 Error "literal out of range"
+"The literal does not fit in the type it takes from its context, for example
+`300` assigned to a SINT (-128..127) or `-1` to a UINT.";
+    E0304 Error "assignment to a constant"
+"The target is declared CONSTANT (VAR CONSTANT, VAR_GLOBAL CONSTANT or
+VAR_EXTERNAL CONSTANT) and cannot be assigned.";
+    E0305 Error "assignment to an output of an instance"
+"The outputs of a function block instance are written only by the function
+block itself. Read them after the call (`x := fb.Q;`) or with `=>` in the
+call; to set a value, use an input.";
+    E0306 Error "assignment to the FOR control variable"
+"The control variable of a FOR loop must not be changed inside the loop: the
+number of iterations is fixed when the loop starts. Use a WHILE loop if the
+count changes.";
+    E0307 Error "assignment target is not a variable"
+"The left-hand side of `:=` (or the target of `=>`) must be a variable, an
+array element or a member: not a literal, a function call, an expression or a
+constant.";
+
+    E0401 Error "unknown parameter"
+"The function or function block has no parameter with this name.";
+    E0402 Error "missing VAR_IN_OUT argument"
+"Every VAR_IN_OUT parameter must be given a variable in each call, because it
+is passed by reference.";
+    E0403 Error "too many arguments"
+"The call gives more positional arguments than the function or function block
+has inputs.";
+    E0404 Error "formal and positional arguments mixed"
+"A call either names every argument (`f(a := 1, b := 2)`) or names none
+(`f(1, 2)`); the two forms cannot be mixed in one call.";
+    E0405 Error "not callable"
+"Only functions and function block instances can be called.";
+    E0406 Error "argument must be a variable"
+"A VAR_IN_OUT parameter is passed by reference and the target of `=>`
+receives a value, so both must be given a variable, not an expression or a
+constant.";
+    E0407 Error "argument of the wrong type"
+"The argument's type does not fit the parameter's type and no implicit
+conversion exists.";
+    E0408 Error "parameter given twice"
+"The same parameter is assigned twice in one call.";
+    E0409 Error "function block type used as a function"
+"A function block type cannot be called directly: declare an instance
+(`t1 : TON;`) and call the instance (`t1(IN := x, PT := T#1s);`). An
+instance itself is not a value either: use its outputs (`t1.Q`).";
+
+    E0501 Error "function block instance in a FUNCTION"
+"Functions have no memory between calls, so they cannot declare function block
+instances (which keep state). Make the POU a FUNCTION_BLOCK.";
+    E0502 Error "function block called in a FUNCTION"
+"Functions cannot call function block instances, which keep state between
+calls. Make the POU a FUNCTION_BLOCK.";
+    E0503 Error "recursion"
+"A POU calls itself, directly or through other POUs. IEC 61131-3 does not
+allow recursion: PLC memory is allocated statically.";
+    E0504 Error "PROGRAM instantiated outside a configuration"
+"Programs are instantiated only in a CONFIGURATION or RESOURCE (`PROGRAM p1
+WITH task : Main;`), never as a variable of another POU.";
+    E0505 Error "VAR_EXTERNAL without VAR_GLOBAL"
+"A VAR_EXTERNAL declaration refers to a global variable that no configuration
+declares in VAR_GLOBAL.";
+    E0506 Error "VAR_EXTERNAL does not match its VAR_GLOBAL"
+"A VAR_EXTERNAL must have the same type as its VAR_GLOBAL, and must be
+declared CONSTANT when the global is CONSTANT.";
+    E0507 Error "variable section not allowed here"
+"This kind of POU does not allow this variable section or qualifier:
+functions have no VAR_GLOBAL, VAR_EXTERNAL of function blocks, or R_EDGE /
+F_EDGE inputs; R_EDGE and F_EDGE apply to BOOL inputs only.";
+
+    E0601 Error "EXIT or CONTINUE outside a loop"
+"EXIT leaves, and CONTINUE restarts, the innermost FOR, WHILE or REPEAT loop;
+outside a loop they have no meaning. Use RETURN to leave a POU.";
+    E0602 Error "overlapping CASE labels"
+"Two CASE labels select the same value, so the second can never be chosen.";
+    E0603 Error "CASE label is not constant"
+"CASE labels must be constants: literals, enumeration values, VAR CONSTANT
+names or constant expressions of them.";
+    E0604 Error "FOR step of zero"
+"A FOR loop with a step of zero never ends.";
+
+    E0701 Error "array index out of bounds"
+"A constant index is outside the declared bounds of the array.";
+    E0702 Error "value outside the subrange"
+"A constant value is outside the limits of the subrange type it is assigned to.";
+    E0703 Error "division by zero"
+"The divisor of `/` or MOD is a constant zero (possibly after constant folding).";
+    E0704 Error "located variable of the wrong size"
+"The size of a direct address fixes the type of the variable located at it:
+`%IX`/`%QX`/`%MX` (or no size letter) is one bit (BOOL), `B` 8 bits (BYTE,
+SINT, USINT, CHAR), `W` 16 bits (WORD, INT, UINT, WCHAR), `D` 32 bits (DWORD,
+DINT, UDINT, REAL, TIME-like 32-bit types), `L` 64 bits (LWORD, LINT, ULINT,
+LREAL, LTIME, TIME, DT...).";
+    E0705 Error "invalid bounds"
+"Array bounds, subrange limits and string lengths must be constant
+expressions, with the lower bound not greater than the upper one and a string
+length of at least 1.";
+
+    E0801 Error "task INTERVAL is not a TIME"
+"The INTERVAL of a periodic task must be a TIME value, for example `INTERVAL := T#10ms`.";
+    E0802 Error "task PRIORITY is not an integer"
+"The PRIORITY of a task must be a non-negative integer constant; lower numbers
+run first.";
+    E0803 Error "program connection of the wrong type"
+"A program instance parameter is connected to a value or variable of another
+type, or the name connected is not an input or output of the program.";
+    E0804 Error "task SINGLE is not a BOOL"
+"The SINGLE input of an event task must be a BOOL variable; the task runs
+once each time it rises.";
+
+    W0101 Warning "result depends on evaluation order"
+"A variable is written by an output parameter (`=>`) or VAR_IN_OUT of one call
+and read by another argument of the same enclosing call. IEC 61131-3 does not
+fix the order in which arguments are evaluated, so other tools may compute a
+different result (stc evaluates left to right). Store the output in a
+separate variable first.";
+    W0102 Warning "local enumeration value hides a global one"
+"A value of an anonymous enumeration declared in this POU has the same name as
+a value of a global enumeration type. Inside the POU the unqualified name
+means the local value, which other tools may treat as ambiguous.";
+    W0103 Warning "assignment to an input"
+"A VAR_INPUT is assigned inside its own POU. Inputs are set by the caller;
+changing them inside hides the caller's value and is usually a mistake. Copy
+the input to a local variable instead.";
+    W0104 Warning "unused variable"
+"The variable is declared but never read or written. Remove it, or use it;
+inputs, outputs and globals are not reported.";
+    W0105 Warning "unreachable statement"
+"The statement comes after RETURN, EXIT or CONTINUE in the same block and can
+never run.";
+    W0106 Warning "function result may be unassigned"
+"On some path through the FUNCTION its result (the variable named like the
+function) is never assigned, so the function returns the type's initial value
+there.";
+    W0107 Warning "integer overflow in constant expression"
+"Constant folding found an integer operation whose result does not fit its
+type. The value wraps around in two's complement, as it would at run time.";
+    W0108 Warning "constant condition"
+"The condition is always TRUE or always FALSE, so one branch is dead code or
+the loop never (or always) runs.";
+    W0109 Warning "local name hides a global one"
+"A local variable has the same name as a global variable, a POU or a data
+type, which it hides inside this POU.";
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_code_has_a_well_formed_name_and_texts() {
+        for &c in Code::ALL {
+            let s = c.as_str();
+            assert_eq!(s.len(), 5);
+            let expected = match c.severity() {
+                CodeSeverity::Error => 'E',
+                CodeSeverity::Warning => 'W',
+            };
+            assert!(s.starts_with(expected), "{s}");
+            assert!(!c.title().is_empty() && c.explanation().len() > 40, "{s}");
+            assert_eq!(Code::parse(&s.to_lowercase()), Some(c));
+        }
+    }
+}

@@ -1,0 +1,618 @@
+//! The syntax tree.
+//!
+//! Expressions live in one arena per project ([`Ast::exprs`]) and are named by
+//! [`ExprId`]; later phases attach facts to them with side tables indexed by
+//! the id (the type of every expression, its constant value) instead of
+//! mutating the tree. Statements, declarations and POUs are plain owned
+//! values. Every node carries its [`Span`]. Names are interned [`Symbol`]s
+//! with the span of their spelling.
+
+use stc_diagnostics::Span;
+
+use crate::intern::Symbol;
+use crate::literal::{AddrSize, DirectAddress};
+use crate::token::{ElemType, GenericType};
+
+/// Index of an expression in [`Ast::exprs`].
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord)]
+pub struct ExprId(pub u32);
+
+impl ExprId {
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+/// A name as written: its symbol and where.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub struct Ident {
+    pub sym: Symbol,
+    pub span: Span,
+}
+
+/// A whole project: every file's items in one tree.
+#[derive(Default)]
+pub struct Ast {
+    pub items: Vec<Item>,
+    pub exprs: Vec<Expr>,
+}
+
+impl Ast {
+    pub fn expr(&self, id: ExprId) -> &Expr {
+        &self.exprs[id.index()]
+    }
+
+    pub fn alloc(&mut self, kind: ExprKind, span: Span) -> ExprId {
+        let id = ExprId(self.exprs.len() as u32);
+        self.exprs.push(Expr { kind, span });
+        id
+    }
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub struct Expr {
+    pub kind: ExprKind,
+    pub span: Span,
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub enum ExprKind {
+    /// Something that could not be parsed; already reported.
+    Error,
+    Literal(Literal),
+    /// A variable, an unqualified enumeration value, a constant...
+    Name(Ident),
+    /// `Type#value`.
+    EnumValue {
+        ty: Ident,
+        value: Ident,
+    },
+    /// `%IX0.1` used as a variable.
+    Address(Box<DirectAddress>),
+    /// `base.member`.
+    Member {
+        base: ExprId,
+        member: Ident,
+    },
+    /// `base.3` or `base.%X3`: one bit (byte, word...) of a bit string.
+    PartialAccess {
+        base: ExprId,
+        size: AddrSize,
+        index: u32,
+    },
+    /// `base[i, j]`.
+    Index {
+        base: ExprId,
+        indices: Box<[ExprId]>,
+    },
+    /// `callee(args)`: a function or a function block instance call.
+    Call {
+        callee: ExprId,
+        args: Box<[Arg]>,
+    },
+    Unary {
+        op: UnaryOp,
+        operand: ExprId,
+    },
+    Binary {
+        op: BinaryOp,
+        lhs: ExprId,
+        rhs: ExprId,
+    },
+    /// `( inner )`, kept so the printer can reproduce the source.
+    Paren(ExprId),
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
+pub enum UnaryOp {
+    Neg,
+    Plus,
+    Not,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
+pub enum BinaryOp {
+    Or,
+    Xor,
+    And,
+    Eq,
+    Ne,
+    Lt,
+    Le,
+    Gt,
+    Ge,
+    Add,
+    Sub,
+    Mul,
+    Div,
+    Mod,
+    Pow,
+}
+
+impl BinaryOp {
+    /// Binding strength: higher binds tighter. Unary operators bind at 8,
+    /// between `*` (7) and `**` (9).
+    pub fn precedence(self) -> u8 {
+        match self {
+            BinaryOp::Or => 1,
+            BinaryOp::Xor => 2,
+            BinaryOp::And => 3,
+            BinaryOp::Eq | BinaryOp::Ne => 4,
+            BinaryOp::Lt | BinaryOp::Le | BinaryOp::Gt | BinaryOp::Ge => 5,
+            BinaryOp::Add | BinaryOp::Sub => 6,
+            BinaryOp::Mul | BinaryOp::Div | BinaryOp::Mod => 7,
+            BinaryOp::Pow => 9,
+        }
+    }
+
+    pub fn symbol(self) -> &'static str {
+        match self {
+            BinaryOp::Or => "OR",
+            BinaryOp::Xor => "XOR",
+            BinaryOp::And => "AND",
+            BinaryOp::Eq => "=",
+            BinaryOp::Ne => "<>",
+            BinaryOp::Lt => "<",
+            BinaryOp::Le => "<=",
+            BinaryOp::Gt => ">",
+            BinaryOp::Ge => ">=",
+            BinaryOp::Add => "+",
+            BinaryOp::Sub => "-",
+            BinaryOp::Mul => "*",
+            BinaryOp::Div => "/",
+            BinaryOp::Mod => "MOD",
+            BinaryOp::Pow => "**",
+        }
+    }
+}
+
+pub const UNARY_PRECEDENCE: u8 = 8;
+
+/// One argument of a call.
+#[derive(Clone, PartialEq, Debug)]
+pub struct Arg {
+    pub kind: ArgKind,
+    pub span: Span,
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub enum ArgKind {
+    /// A positional (non-formal) argument.
+    Positional(ExprId),
+    /// `name := value`.
+    Input { name: Ident, value: ExprId },
+    /// `name => target` or `NOT name => target`.
+    Output {
+        name: Ident,
+        negated: bool,
+        target: ExprId,
+    },
+}
+
+/// The prefix of a typed literal: `INT#`, `MyType#`.
+#[derive(Clone, Copy, PartialEq, Debug)]
+pub enum TypePrefix {
+    Elem(ElemType, Span),
+    Named(Ident),
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub struct Literal {
+    pub value: LitValue,
+    /// `INT#` in `INT#5`; time literals carry their kind in the value.
+    pub prefix: Option<TypePrefix>,
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub enum LitValue {
+    /// An integer; `negative` only for a signed typed literal (`INT#-5`).
+    /// Untyped negative numbers are `Unary(Neg, Int)`.
+    Int {
+        value: u64,
+        negative: bool,
+    },
+    Real(f64),
+    Bool(bool),
+    String {
+        value: Box<str>,
+        wide: bool,
+    },
+    /// Nanoseconds; `long` for LTIME.
+    Duration {
+        ns: i64,
+        long: bool,
+    },
+    /// Seconds since 1970-01-01 (a whole day); `long` for LDATE.
+    Date {
+        secs: i64,
+        long: bool,
+    },
+    /// Nanoseconds since midnight; `long` for LTOD.
+    Tod {
+        ns: u64,
+        long: bool,
+    },
+    /// Nanoseconds since 1970-01-01T00:00; `long` for LDT.
+    Dt {
+        ns: i64,
+        long: bool,
+    },
+}
+
+// ---------------------------------------------------------------------------
+// Statements
+
+#[derive(Clone, PartialEq, Debug)]
+pub struct Stmt {
+    pub kind: StmtKind,
+    pub span: Span,
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub enum StmtKind {
+    /// `;` alone.
+    Empty,
+    /// A statement that could not be parsed; already reported.
+    Error,
+    Assign {
+        target: ExprId,
+        value: ExprId,
+    },
+    /// A call used as a statement (a function block or function call).
+    Call(ExprId),
+    If {
+        /// `IF`/`ELSIF` conditions with their bodies, in order.
+        branches: Vec<CondBranch>,
+        else_body: Option<Vec<Stmt>>,
+    },
+    Case {
+        selector: ExprId,
+        arms: Vec<CaseArm>,
+        else_body: Option<Vec<Stmt>>,
+    },
+    For {
+        var: Ident,
+        from: ExprId,
+        to: ExprId,
+        by: Option<ExprId>,
+        body: Vec<Stmt>,
+    },
+    While {
+        cond: ExprId,
+        body: Vec<Stmt>,
+    },
+    Repeat {
+        body: Vec<Stmt>,
+        until: ExprId,
+    },
+    Exit,
+    Continue,
+    Return,
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub struct CondBranch {
+    pub cond: ExprId,
+    pub body: Vec<Stmt>,
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub struct CaseArm {
+    pub labels: Vec<CaseLabel>,
+    pub body: Vec<Stmt>,
+    pub span: Span,
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub enum CaseLabel {
+    Value(ExprId),
+    Range(ExprId, ExprId),
+}
+
+// ---------------------------------------------------------------------------
+// Types and declarations
+
+#[derive(Clone, PartialEq, Debug)]
+pub struct TypeSpec {
+    pub kind: TypeSpecKind,
+    pub span: Span,
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub enum TypeSpecKind {
+    /// A type that could not be parsed or is not supported; already reported.
+    Error,
+    Elementary(ElemType),
+    Generic(GenericType),
+    /// A derived type, function block type or program type by name.
+    Named(Ident),
+    /// `STRING`, `STRING[10]`, `WSTRING(20)`.
+    String {
+        wide: bool,
+        len: Option<ExprId>,
+    },
+    /// `INT (0..100)`.
+    Subrange {
+        base: Box<TypeSpec>,
+        lo: ExprId,
+        hi: ExprId,
+    },
+    /// `(red, green := 5, blue)`, optionally with a base type after it.
+    Enum {
+        values: Vec<EnumMember>,
+        base: Option<Box<TypeSpec>>,
+    },
+    /// `ARRAY [1..10, 0..N] OF T`.
+    Array {
+        dims: Vec<ArrayDim>,
+        elem: Box<TypeSpec>,
+    },
+    /// `STRUCT ... END_STRUCT`.
+    Struct {
+        members: Vec<VarDecl>,
+    },
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub struct EnumMember {
+    pub name: Ident,
+    pub value: Option<ExprId>,
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub enum ArrayDim {
+    Range {
+        lo: ExprId,
+        hi: ExprId,
+    },
+    /// `*`: a variable-length dimension (3rd edition, VAR_IN_OUT only).
+    Star(Span),
+}
+
+/// An initial value.
+#[derive(Clone, PartialEq, Debug)]
+pub struct Init {
+    pub kind: InitKind,
+    pub span: Span,
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub enum InitKind {
+    Expr(ExprId),
+    /// `[1, 2, 3(0)]`.
+    Array(Vec<ArrayInitElem>),
+    /// `(x := 1, y := 2)`.
+    Struct(Vec<StructInitElem>),
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub struct ArrayInitElem {
+    /// `3` in `3(0)`.
+    pub repeat: Option<ExprId>,
+    /// The value, or the values repeated: `[2(1, 2)]` is `[1, 2, 1, 2]`;
+    /// empty for `3()`, three default values.
+    pub values: Vec<Init>,
+    pub span: Span,
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub struct StructInitElem {
+    pub name: Ident,
+    pub value: Init,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
+pub enum Edge {
+    Rising,
+    Falling,
+}
+
+/// One declaration line: `a, b AT %IX0.0 : T := init;`.
+#[derive(Clone, PartialEq, Debug)]
+pub struct VarDecl {
+    /// Empty for an unnamed located variable (`AT %IX0.0 : BOOL;`).
+    pub names: Vec<Ident>,
+    pub location: Option<Located>,
+    pub ty: TypeSpec,
+    pub edge: Option<Edge>,
+    pub init: Option<Init>,
+    pub span: Span,
+    /// Pragmas written just before the declaration.
+    pub pragmas: Vec<Span>,
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub struct Located {
+    pub address: DirectAddress,
+    pub span: Span,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
+pub enum VarKind {
+    Var,
+    Input,
+    Output,
+    InOut,
+    External,
+    Global,
+    Temp,
+    Access,
+    Config,
+}
+
+impl VarKind {
+    pub fn keyword(self) -> &'static str {
+        match self {
+            VarKind::Var => "VAR",
+            VarKind::Input => "VAR_INPUT",
+            VarKind::Output => "VAR_OUTPUT",
+            VarKind::InOut => "VAR_IN_OUT",
+            VarKind::External => "VAR_EXTERNAL",
+            VarKind::Global => "VAR_GLOBAL",
+            VarKind::Temp => "VAR_TEMP",
+            VarKind::Access => "VAR_ACCESS",
+            VarKind::Config => "VAR_CONFIG",
+        }
+    }
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
+pub enum Retention {
+    Retain,
+    NonRetain,
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub struct VarBlock {
+    pub kind: VarKind,
+    pub constant: bool,
+    pub retention: Option<Retention>,
+    pub items: VarBlockItems,
+    pub span: Span,
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub enum VarBlockItems {
+    Vars(Vec<VarDecl>),
+    Access(Vec<AccessDecl>),
+    Config(Vec<ConfigInit>),
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
+pub enum AccessDirection {
+    ReadOnly,
+    ReadWrite,
+}
+
+/// `name : path : TYPE [READ_ONLY|READ_WRITE];` in VAR_ACCESS.
+#[derive(Clone, PartialEq, Debug)]
+pub struct AccessDecl {
+    pub name: Ident,
+    /// `CPU` in `CPU.%IW4` (a direct variable of a named resource).
+    pub resource: Option<Ident>,
+    pub path: ExprId,
+    pub ty: TypeSpec,
+    pub direction: Option<AccessDirection>,
+    pub span: Span,
+}
+
+/// `res.prog.fb.var [AT %Q..] : TYPE [:= init];` in VAR_CONFIG.
+#[derive(Clone, PartialEq, Debug)]
+pub struct ConfigInit {
+    pub path: Vec<Ident>,
+    pub location: Option<Located>,
+    pub ty: TypeSpec,
+    pub init: Option<Init>,
+    pub span: Span,
+}
+
+/// `name : spec [:= init];` in a TYPE block.
+#[derive(Clone, PartialEq, Debug)]
+pub struct TypeDecl {
+    pub name: Ident,
+    pub spec: TypeSpec,
+    pub init: Option<Init>,
+    pub span: Span,
+    pub pragmas: Vec<Span>,
+}
+
+// ---------------------------------------------------------------------------
+// Program organisation units and configurations
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
+pub enum PouKind {
+    Function,
+    FunctionBlock,
+    Program,
+}
+
+impl PouKind {
+    pub fn keyword(self) -> &'static str {
+        match self {
+            PouKind::Function => "FUNCTION",
+            PouKind::FunctionBlock => "FUNCTION_BLOCK",
+            PouKind::Program => "PROGRAM",
+        }
+    }
+
+    pub fn end_keyword(self) -> &'static str {
+        match self {
+            PouKind::Function => "END_FUNCTION",
+            PouKind::FunctionBlock => "END_FUNCTION_BLOCK",
+            PouKind::Program => "END_PROGRAM",
+        }
+    }
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub struct Pou {
+    pub kind: PouKind,
+    pub name: Ident,
+    /// The result type of a FUNCTION (`None` for a function without result).
+    pub return_type: Option<TypeSpec>,
+    pub var_blocks: Vec<VarBlock>,
+    pub body: Vec<Stmt>,
+    pub span: Span,
+    pub pragmas: Vec<Span>,
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub struct Configuration {
+    pub name: Ident,
+    /// VAR_GLOBAL, VAR_ACCESS and VAR_CONFIG blocks, in source order.
+    pub var_blocks: Vec<VarBlock>,
+    pub resources: Vec<Resource>,
+    pub span: Span,
+}
+
+/// A RESOURCE, or the implicit single resource of a configuration written
+/// without one (then `name` is `None`).
+#[derive(Clone, PartialEq, Debug)]
+pub struct Resource {
+    pub name: Option<Ident>,
+    /// The resource type after ON.
+    pub on: Option<Ident>,
+    pub var_blocks: Vec<VarBlock>,
+    pub tasks: Vec<TaskDecl>,
+    pub programs: Vec<ProgramConfig>,
+    pub span: Span,
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub struct TaskDecl {
+    pub name: Ident,
+    pub single: Option<ExprId>,
+    pub interval: Option<ExprId>,
+    pub priority: Option<ExprId>,
+    pub span: Span,
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub struct ProgramConfig {
+    pub name: Ident,
+    pub retention: Option<Retention>,
+    pub task: Option<Ident>,
+    pub type_name: Ident,
+    pub conns: Vec<ProgramConn>,
+    pub span: Span,
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub enum ProgramConn {
+    /// `input := source`.
+    Input { name: ExprId, value: ExprId },
+    /// `output => sink`.
+    Output { name: ExprId, target: ExprId },
+    /// `fb_instance WITH task`.
+    FbTask { fb: ExprId, task: Ident },
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub enum Item {
+    Types(Vec<TypeDecl>, Span),
+    Pou(Pou),
+    Configuration(Configuration),
+    /// A VAR_GLOBAL block outside any configuration (a global variable list
+    /// as CODESYS-style projects write them).
+    GlobalVars(VarBlock),
+}

@@ -1,0 +1,1086 @@
+//! Declarations: POUs, variable sections, types, initial values,
+//! configurations, resources and tasks.
+
+use stc_diagnostics::{Code, Diagnostic, Span};
+
+use super::{is_item_end, is_item_start, is_var_block_start, Parser};
+use crate::ast::{
+    AccessDecl, AccessDirection, ArrayDim, ArrayInitElem, ConfigInit, Configuration, Edge,
+    EnumMember, Init, InitKind, Item, Located, Pou, PouKind, ProgramConfig, ProgramConn, Resource,
+    Retention, StructInitElem, TaskDecl, TypeDecl, TypeSpec, TypeSpecKind, VarBlock, VarBlockItems,
+    VarDecl, VarKind,
+};
+use crate::literal;
+use crate::token::{ElemType, Keyword, TokenKind};
+
+/// Instruction List operators, to recognise an IL body.
+const IL_OPERATORS: &[&str] = &[
+    "LD", "LDN", "ST", "STN", "S", "R", "S1", "R1", "CLK", "CU", "CD", "PV", "IN", "PT", "ANDN",
+    "ORN", "XORN", "ADD", "SUB", "MUL", "DIV", "GT", "GE", "EQ", "NE", "LE", "LT", "JMP", "JMPC",
+    "JMPCN", "CAL", "CALC", "CALCN", "RET", "RETC", "RETCN",
+];
+
+fn pou_end(kind: PouKind) -> Keyword {
+    match kind {
+        PouKind::Function => Keyword::EndFunction,
+        PouKind::FunctionBlock => Keyword::EndFunctionBlock,
+        PouKind::Program => Keyword::EndProgram,
+    }
+}
+
+fn var_kind(k: TokenKind) -> Option<VarKind> {
+    Some(match k {
+        TokenKind::Kw(Keyword::Var) => VarKind::Var,
+        TokenKind::Kw(Keyword::VarInput) => VarKind::Input,
+        TokenKind::Kw(Keyword::VarOutput) => VarKind::Output,
+        TokenKind::Kw(Keyword::VarInOut) => VarKind::InOut,
+        TokenKind::Kw(Keyword::VarExternal) => VarKind::External,
+        TokenKind::Kw(Keyword::VarGlobal) => VarKind::Global,
+        TokenKind::Kw(Keyword::VarTemp) => VarKind::Temp,
+        TokenKind::Kw(Keyword::VarAccess) => VarKind::Access,
+        TokenKind::Kw(Keyword::VarConfig) => VarKind::Config,
+        _ => return None,
+    })
+}
+
+/// Where skipping a bad declaration stops (without consuming).
+fn decl_sync(k: TokenKind) -> bool {
+    matches!(
+        k,
+        TokenKind::Eof | TokenKind::Kw(Keyword::EndVar | Keyword::EndStruct | Keyword::EndType)
+    ) || is_item_start(k)
+        || is_item_end(k)
+        || is_var_block_start(k)
+}
+
+impl Parser<'_> {
+    /// Skips the rest of a bad declaration, up to and including its `;`.
+    fn skip_decl(&mut self) {
+        while !decl_sync(self.kind()) {
+            if self.bump().kind == TokenKind::Semi {
+                return;
+            }
+        }
+    }
+
+    fn expect_decl_semi(&mut self) {
+        if !self.eat(TokenKind::Semi) {
+            self.expected("`;`");
+            self.skip_decl();
+        }
+    }
+
+    // ----- POUs -----------------------------------------------------------
+
+    pub(crate) fn pou(&mut self, kind: PouKind, pragmas: Vec<Span>) -> Option<Pou> {
+        let opener = self.bump().span();
+        for modifier in [
+            "ABSTRACT",
+            "FINAL",
+            "PUBLIC",
+            "PRIVATE",
+            "PROTECTED",
+            "INTERNAL",
+        ] {
+            if self.at_word(modifier) && self.nth_kind(1) == TokenKind::Ident {
+                let span = self.bump().span();
+                self.unsupported(span, "access and inheritance modifiers are");
+            }
+        }
+        let Some(name) = self.name("a name") else {
+            self.skip_to_item();
+            return None;
+        };
+        if kind == PouKind::FunctionBlock {
+            for word in ["EXTENDS", "IMPLEMENTS"] {
+                if self.at_word(word) {
+                    let span = self.bump().span();
+                    self.unsupported(span, "inheritance (EXTENDS, IMPLEMENTS) is");
+                    while self.at(TokenKind::Ident)
+                        || self.at(TokenKind::Comma)
+                        || self.at(TokenKind::Dot)
+                    {
+                        self.bump();
+                    }
+                }
+            }
+        }
+        let return_type = if kind == PouKind::Function && self.eat(TokenKind::Colon) {
+            Some(self.type_spec())
+        } else {
+            None
+        };
+        let mut var_blocks = Vec::new();
+        while !self.aborted {
+            if is_var_block_start(self.kind()) {
+                if let Some(b) = self.var_block() {
+                    var_blocks.push(b);
+                }
+            } else if self.at(TokenKind::Semi) {
+                self.bump();
+            } else {
+                break;
+            }
+        }
+        let mut body = Vec::new();
+        if self.at_il_body() {
+            let span = self.tok().span();
+            self.unsupported(span, "Instruction List bodies are");
+            while !self.at(TokenKind::Eof)
+                && !is_item_end(self.kind())
+                && !is_item_start(self.kind())
+            {
+                self.bump();
+            }
+        } else {
+            body = self.stmt_list(false);
+        }
+        // The END keyword; what else stands here is reported and skipped.
+        let end = pou_end(kind);
+        loop {
+            if self.eat_kw(end) || self.aborted {
+                break;
+            }
+            let k = self.kind();
+            if is_var_block_start(k) {
+                let d = Diagnostic::new(
+                    Code::E0020,
+                    self.tok().span(),
+                    "variable sections must come before the statements of the body",
+                );
+                self.report(d);
+                if let Some(b) = self.var_block() {
+                    var_blocks.push(b);
+                }
+                body.extend(self.stmt_list(false));
+                continue;
+            }
+            let found = self.describe_current();
+            let code = match k {
+                TokenKind::Kw(kw) if kw.name().starts_with("END_") => Code::E0021,
+                _ => Code::E0020,
+            };
+            let d = Diagnostic::new(
+                code,
+                self.tok().span(),
+                format!("expected `{}`, found {found}", end.name()),
+            )
+            .with_label(format!("expected `{}`", end.name()))
+            .with_secondary(opener, format!("this {} is not closed", kind.keyword()));
+            self.report(d);
+            if k == TokenKind::Eof || is_item_start(k) || is_item_end(k) {
+                break;
+            }
+            self.bump();
+            self.eat(TokenKind::Semi);
+            body.extend(self.stmt_list(false));
+        }
+        Some(Pou {
+            kind,
+            name,
+            return_type,
+            var_blocks,
+            body,
+            span: opener.to(self.prev().span()),
+            pragmas,
+        })
+    }
+
+    /// Whether the body that starts here is Instruction List: an IL operator
+    /// with an operand, or a label, where ST would have `:=` or a call.
+    fn at_il_body(&self) -> bool {
+        match self.kind() {
+            TokenKind::Kw(
+                Keyword::And | Keyword::Or | Keyword::Xor | Keyword::Not | Keyword::Mod,
+            ) => !matches!(self.nth_kind(1), TokenKind::LParen),
+            TokenKind::Ident => {
+                let word = self.text_of(self.tok());
+                let next = self.nth_kind(1);
+                if next == TokenKind::Colon {
+                    return true;
+                }
+                IL_OPERATORS.iter().any(|op| op.eq_ignore_ascii_case(word))
+                    && !matches!(
+                        next,
+                        TokenKind::Assign
+                            | TokenKind::Dot
+                            | TokenKind::LBracket
+                            | TokenKind::LParen
+                            | TokenKind::Semi
+                            | TokenKind::Arrow
+                            | TokenKind::QuestionAssign
+                            | TokenKind::Caret
+                    )
+            }
+            _ => false,
+        }
+    }
+
+    // ----- variable sections ----------------------------------------------
+
+    pub(crate) fn var_block(&mut self) -> Option<VarBlock> {
+        let start = self.tok();
+        let kind = var_kind(start.kind)?;
+        self.bump();
+        let mut constant = false;
+        let mut retention = None;
+        loop {
+            if self.eat_kw(Keyword::Constant) {
+                constant = true;
+            } else if self.eat_kw(Keyword::Retain) {
+                retention = Some(Retention::Retain);
+            } else if self.eat_kw(Keyword::NonRetain) {
+                retention = Some(Retention::NonRetain);
+            } else if self.at_word("PERSISTENT") {
+                let span = self.bump().span();
+                self.unsupported(span, "PERSISTENT variables are");
+            } else {
+                break;
+            }
+        }
+        let items = match kind {
+            VarKind::Access => VarBlockItems::Access(self.decl_list(Self::access_decl)),
+            VarKind::Config => VarBlockItems::Config(self.decl_list(Self::config_init)),
+            _ => VarBlockItems::Vars(self.decl_list(|p| p.var_decl(false))),
+        };
+        if !self.eat_kw(Keyword::EndVar) {
+            self.expected("`END_VAR`");
+        }
+        Some(VarBlock {
+            kind,
+            constant,
+            retention,
+            items,
+            span: start.span().to(self.prev().span()),
+        })
+    }
+
+    /// Declarations until END_VAR (or END_STRUCT), each parsed by `f`.
+    fn decl_list<T>(&mut self, mut f: impl FnMut(&mut Self) -> Option<T>) -> Vec<T> {
+        let mut out = Vec::new();
+        while !self.aborted && !decl_sync(self.kind()) {
+            if !self.at_decl_start() {
+                // Most likely END_VAR is missing and the body begins here.
+                break;
+            }
+            let before = self.pos;
+            if let Some(d) = f(self) {
+                out.push(d);
+            }
+            if self.pos == before {
+                self.bump();
+            }
+        }
+        out
+    }
+
+    /// A declaration starts with a name followed by `,`, `:`, AT or `.`
+    /// (VAR_CONFIG paths), or with AT.
+    fn at_decl_start(&self) -> bool {
+        match self.kind() {
+            TokenKind::Kw(Keyword::At) => true,
+            TokenKind::Ident => {
+                matches!(
+                    self.nth_kind(1),
+                    TokenKind::Colon
+                        | TokenKind::Comma
+                        | TokenKind::Dot
+                        | TokenKind::Kw(Keyword::At)
+                ) || self.nth_kind(1) == TokenKind::Ident
+            }
+            k if k.is_reserved_word() => {
+                matches!(self.nth_kind(1), TokenKind::Colon | TokenKind::Comma)
+            }
+            _ => false,
+        }
+    }
+
+    fn location(&mut self) -> Option<Located> {
+        let t = self.tok();
+        if t.kind != TokenKind::Address {
+            self.expected("a direct address such as %IX0.0");
+            return None;
+        }
+        self.bump();
+        match literal::parse_address(self.text_of(t)) {
+            Ok(address) => Some(Located {
+                address,
+                span: t.span(),
+            }),
+            Err(e) => {
+                self.report_always(Diagnostic::new(e.code, t.span(), e.message));
+                None
+            }
+        }
+    }
+
+    /// `a, b AT %IX0.0 : T R_EDGE := init;` (in a STRUCT: `member : T := init;`).
+    pub(crate) fn var_decl(&mut self, in_struct: bool) -> Option<VarDecl> {
+        let start = self.tok().span();
+        let pragmas = self.take_pragmas(start.lo);
+        let mut names = Vec::new();
+        if !self.at_kw(Keyword::At) {
+            loop {
+                match self.name("a variable name") {
+                    Some(n) => names.push(n),
+                    None => {
+                        self.skip_decl();
+                        return None;
+                    }
+                }
+                if !self.eat(TokenKind::Comma) {
+                    break;
+                }
+            }
+        }
+        let mut location = None;
+        if self.eat_kw(Keyword::At) {
+            location = self.location();
+            if location.is_none() {
+                self.skip_decl();
+                return None;
+            }
+        }
+        if !self.expect(TokenKind::Colon) {
+            self.skip_decl();
+            return None;
+        }
+        let ty = self.type_spec();
+        let edge = if self.eat_kw(Keyword::REdge) {
+            Some(Edge::Rising)
+        } else if self.eat_kw(Keyword::FEdge) {
+            Some(Edge::Falling)
+        } else {
+            None
+        };
+        let init = if self.eat(TokenKind::Assign) {
+            Some(self.init())
+        } else {
+            None
+        };
+        let span = start.to(self.prev().span());
+        if in_struct && self.at_kw(Keyword::EndStruct) {
+            self.expected("`;`");
+        } else {
+            self.expect_decl_semi();
+        }
+        Some(VarDecl {
+            names,
+            location,
+            ty,
+            edge,
+            init,
+            span,
+            pragmas,
+        })
+    }
+
+    /// `name : path : TYPE [READ_ONLY|READ_WRITE];`
+    fn access_decl(&mut self) -> Option<AccessDecl> {
+        let start = self.tok().span();
+        let Some(name) = self.name("an access name") else {
+            self.skip_decl();
+            return None;
+        };
+        if !self.expect(TokenKind::Colon) {
+            self.skip_decl();
+            return None;
+        }
+        // `RES.%IX1.0`: a direct variable of a named resource.
+        let mut resource = None;
+        if self.at(TokenKind::Ident)
+            && self.nth_kind(1) == TokenKind::Dot
+            && self.nth_kind(2) == TokenKind::Address
+        {
+            resource = self.name("a resource name");
+            self.bump();
+        }
+        let path = self.postfix();
+        if !self.expect(TokenKind::Colon) {
+            self.skip_decl();
+            return None;
+        }
+        let ty = self.type_spec();
+        let direction = if self.at_word("READ_ONLY") {
+            self.bump();
+            Some(AccessDirection::ReadOnly)
+        } else if self.at_word("READ_WRITE") {
+            self.bump();
+            Some(AccessDirection::ReadWrite)
+        } else {
+            None
+        };
+        let span = start.to(self.prev().span());
+        self.expect_decl_semi();
+        Some(AccessDecl {
+            name,
+            resource,
+            path,
+            ty,
+            direction,
+            span,
+        })
+    }
+
+    /// `res.prog.inst.var [AT %QX0.0] : TYPE [:= init];`
+    fn config_init(&mut self) -> Option<ConfigInit> {
+        let start = self.tok().span();
+        let mut path = Vec::new();
+        loop {
+            match self.name("a variable path") {
+                Some(n) => path.push(n),
+                None => {
+                    self.skip_decl();
+                    return None;
+                }
+            }
+            if !self.eat(TokenKind::Dot) {
+                break;
+            }
+        }
+        let location = if self.eat_kw(Keyword::At) {
+            self.location()
+        } else {
+            None
+        };
+        if !self.expect(TokenKind::Colon) {
+            self.skip_decl();
+            return None;
+        }
+        let ty = self.type_spec();
+        let init = if self.eat(TokenKind::Assign) {
+            Some(self.init())
+        } else {
+            None
+        };
+        let span = start.to(self.prev().span());
+        self.expect_decl_semi();
+        Some(ConfigInit {
+            path,
+            location,
+            ty,
+            init,
+            span,
+        })
+    }
+
+    // ----- types ------------------------------------------------------------
+
+    pub(crate) fn type_spec(&mut self) -> TypeSpec {
+        let t = self.tok();
+        if !self.enter() {
+            return TypeSpec {
+                kind: TypeSpecKind::Error,
+                span: t.span(),
+            };
+        }
+        let kind = self.type_spec_kind();
+        self.leave();
+        TypeSpec {
+            kind,
+            span: t.span().to(self.prev().span()),
+        }
+    }
+
+    fn type_spec_kind(&mut self) -> TypeSpecKind {
+        let t = self.tok();
+        match t.kind {
+            TokenKind::Elem(e @ (ElemType::String | ElemType::Wstring)) => {
+                self.bump();
+                let wide = e == ElemType::Wstring;
+                let close = match self.kind() {
+                    TokenKind::LBracket => Some(TokenKind::RBracket),
+                    TokenKind::LParen => Some(TokenKind::RParen),
+                    _ => None,
+                };
+                let len = close.map(|close| {
+                    self.bump();
+                    let len = self.expr();
+                    self.expect(close);
+                    len
+                });
+                TypeSpecKind::String { wide, len }
+            }
+            TokenKind::Elem(e) => {
+                self.bump();
+                let base = TypeSpec {
+                    kind: TypeSpecKind::Elementary(e),
+                    span: t.span(),
+                };
+                if self.at(TokenKind::LParen) {
+                    // `INT (0..100)` is a subrange, `INT (red := 1, ...)` an
+                    // enumeration with named values and a base type.
+                    let enum_like = self.nth_kind(1) == TokenKind::Ident
+                        && matches!(
+                            self.nth_kind(2),
+                            TokenKind::Assign | TokenKind::Comma | TokenKind::RParen
+                        );
+                    if enum_like {
+                        return match self.enum_spec() {
+                            TypeSpecKind::Enum { values, .. } => TypeSpecKind::Enum {
+                                values,
+                                base: Some(Box::new(base)),
+                            },
+                            other => other,
+                        };
+                    }
+                    return self.subrange(base);
+                }
+                base.kind
+            }
+            TokenKind::Generic(g) => {
+                self.bump();
+                TypeSpecKind::Generic(g)
+            }
+            TokenKind::Ident
+                if (self.at_word("POINTER") || self.at_word("REFERENCE"))
+                    && self.nth_kind(1) == TokenKind::Kw(Keyword::To) =>
+            {
+                self.bump();
+                let to = self.bump();
+                self.unsupported(t.span().to(to.span()), "POINTER TO and REFERENCE TO are");
+                self.type_spec();
+                TypeSpecKind::Error
+            }
+            TokenKind::Ident => {
+                self.bump();
+                let name = self.intern_token(t);
+                TypeSpecKind::Named(name)
+            }
+            TokenKind::LParen => self.enum_spec(),
+            TokenKind::Kw(Keyword::Array) => self.array_spec(),
+            TokenKind::Kw(Keyword::Struct) => {
+                self.bump();
+                let members = self.decl_list(|p| p.var_decl(true));
+                if !self.eat_kw(Keyword::EndStruct) {
+                    self.expected("`END_STRUCT`");
+                }
+                TypeSpecKind::Struct { members }
+            }
+            _ => {
+                self.expected("a type");
+                TypeSpecKind::Error
+            }
+        }
+    }
+
+    fn subrange(&mut self, base: TypeSpec) -> TypeSpecKind {
+        self.bump(); // (
+        let lo = self.expr();
+        self.expect(TokenKind::DotDot);
+        let hi = self.expr();
+        self.expect(TokenKind::RParen);
+        TypeSpecKind::Subrange {
+            base: Box::new(base),
+            lo,
+            hi,
+        }
+    }
+
+    fn enum_spec(&mut self) -> TypeSpecKind {
+        self.bump(); // (
+        let mut values = Vec::new();
+        while let Some(name) = self.name("an enumeration value") {
+            let value = if self.eat(TokenKind::Assign) {
+                Some(self.expr())
+            } else {
+                None
+            };
+            values.push(EnumMember { name, value });
+            if !self.eat(TokenKind::Comma) {
+                break;
+            }
+        }
+        self.expect(TokenKind::RParen);
+        // A dialect form names the base type after the values: `(a, b) INT`.
+        let base = match self.kind() {
+            TokenKind::Elem(_) => Some(Box::new(self.type_spec())),
+            _ => None,
+        };
+        TypeSpecKind::Enum { values, base }
+    }
+
+    fn array_spec(&mut self) -> TypeSpecKind {
+        self.bump(); // ARRAY
+        let mut dims = Vec::new();
+        if self.expect(TokenKind::LBracket) {
+            loop {
+                if self.at(TokenKind::Star) {
+                    let span = self.bump().span();
+                    dims.push(ArrayDim::Star(span));
+                } else {
+                    let lo = self.expr();
+                    self.expect(TokenKind::DotDot);
+                    let hi = self.expr();
+                    dims.push(ArrayDim::Range { lo, hi });
+                }
+                if !self.eat(TokenKind::Comma) {
+                    break;
+                }
+            }
+            self.expect(TokenKind::RBracket);
+        }
+        self.expect_kw(Keyword::Of);
+        let elem = Box::new(self.type_spec());
+        TypeSpecKind::Array { dims, elem }
+    }
+
+    // ----- initial values -------------------------------------------------
+
+    pub(crate) fn init(&mut self) -> Init {
+        let start = self.tok().span();
+        if !self.enter() {
+            let e = self.error_expr(start);
+            return Init {
+                kind: InitKind::Expr(e),
+                span: start,
+            };
+        }
+        let kind = if self.at(TokenKind::LBracket) {
+            self.array_init()
+        } else if self.at(TokenKind::LParen)
+            && (self.nth_kind(1) == TokenKind::Ident || self.nth_kind(1).is_reserved_word())
+            && self.nth_kind(2) == TokenKind::Assign
+        {
+            self.struct_init()
+        } else {
+            InitKind::Expr(self.expr())
+        };
+        self.leave();
+        Init {
+            kind,
+            span: start.to(self.prev().span()),
+        }
+    }
+
+    fn array_init(&mut self) -> InitKind {
+        self.bump(); // [
+        let mut elems = Vec::new();
+        if !self.at(TokenKind::RBracket) {
+            loop {
+                let start = self.tok().span();
+                if matches!(self.kind(), TokenKind::Int | TokenKind::BasedInt)
+                    && self.nth_kind(1) == TokenKind::LParen
+                {
+                    let count = self.postfix_literal();
+                    self.bump(); // (
+                    let mut values = Vec::new();
+                    if !self.at(TokenKind::RParen) {
+                        loop {
+                            values.push(self.init());
+                            if !self.eat(TokenKind::Comma) || self.aborted {
+                                break;
+                            }
+                        }
+                    }
+                    self.expect(TokenKind::RParen);
+                    elems.push(ArrayInitElem {
+                        repeat: Some(count),
+                        values,
+                        span: start.to(self.prev().span()),
+                    });
+                } else {
+                    let value = self.init();
+                    elems.push(ArrayInitElem {
+                        repeat: None,
+                        span: value.span,
+                        values: vec![value],
+                    });
+                }
+                if !self.eat(TokenKind::Comma) || self.aborted {
+                    break;
+                }
+            }
+        }
+        self.expect(TokenKind::RBracket);
+        InitKind::Array(elems)
+    }
+
+    /// The repetition count of `3(0)`: just the integer literal.
+    fn postfix_literal(&mut self) -> crate::ast::ExprId {
+        let t = self.tok();
+        let text = self.text_of(t);
+        let value = if t.kind == TokenKind::Int {
+            literal::parse_int(text)
+        } else {
+            literal::parse_based_int(text)
+        };
+        self.bump();
+        match value {
+            Ok(v) => self.mk(
+                crate::ast::ExprKind::Literal(crate::ast::Literal {
+                    value: crate::ast::LitValue::Int {
+                        value: v,
+                        negative: false,
+                    },
+                    prefix: None,
+                }),
+                t.span(),
+                0,
+            ),
+            Err(e) => {
+                self.report_always(Diagnostic::new(e.code, t.span(), e.message));
+                self.error_expr(t.span())
+            }
+        }
+    }
+
+    fn struct_init(&mut self) -> InitKind {
+        self.bump(); // (
+        let mut elems = Vec::new();
+        while let Some(name) = self.name("a member name") {
+            self.expect(TokenKind::Assign);
+            let value = self.init();
+            elems.push(StructInitElem { name, value });
+            if !self.eat(TokenKind::Comma) || self.aborted {
+                break;
+            }
+        }
+        self.expect(TokenKind::RParen);
+        InitKind::Struct(elems)
+    }
+
+    // ----- TYPE blocks --------------------------------------------------------
+
+    pub(crate) fn type_block(&mut self, pragmas: Vec<Span>) -> Option<Item> {
+        let start = self.bump().span();
+        let mut decls = Vec::new();
+        let mut first_pragmas = Some(pragmas);
+        while !self.aborted && !decl_sync(self.kind()) {
+            let before = self.pos;
+            let decl_start = self.tok().span();
+            let mut pragmas = self.take_pragmas(decl_start.lo);
+            if let Some(mut p) = first_pragmas.take() {
+                p.append(&mut pragmas);
+                pragmas = p;
+            }
+            if let Some(name) = self.name("a type name") {
+                if self.expect(TokenKind::Colon) {
+                    let spec = self.type_spec();
+                    let init = if self.eat(TokenKind::Assign) {
+                        Some(self.init())
+                    } else {
+                        None
+                    };
+                    let span = decl_start.to(self.prev().span());
+                    self.expect_decl_semi();
+                    decls.push(TypeDecl {
+                        name,
+                        spec,
+                        init,
+                        span,
+                        pragmas,
+                    });
+                } else {
+                    self.skip_decl();
+                }
+            } else {
+                self.skip_decl();
+            }
+            if self.pos == before {
+                self.bump();
+            }
+        }
+        if !self.eat_kw(Keyword::EndType) {
+            self.expected("`END_TYPE`");
+        }
+        Some(Item::Types(decls, start.to(self.prev().span())))
+    }
+
+    // ----- configurations ---------------------------------------------------
+
+    pub(crate) fn configuration(&mut self) -> Option<Configuration> {
+        let opener = self.bump().span();
+        let Some(name) = self.name("a configuration name") else {
+            self.skip_to_item();
+            return None;
+        };
+        let mut var_blocks = Vec::new();
+        let mut resources = Vec::new();
+        let mut implicit: Option<Resource> = None;
+        loop {
+            if self.aborted {
+                break;
+            }
+            let t = self.tok();
+            match t.kind {
+                TokenKind::Kw(Keyword::EndConfiguration) => {
+                    self.bump();
+                    break;
+                }
+                k if is_var_block_start(k) => {
+                    if let Some(b) = self.var_block() {
+                        var_blocks.push(b);
+                    }
+                }
+                TokenKind::Kw(Keyword::Resource) => {
+                    if let Some(r) = self.resource() {
+                        resources.push(r);
+                    }
+                }
+                TokenKind::Kw(Keyword::Task) | TokenKind::Kw(Keyword::Program) => {
+                    let r = implicit.get_or_insert_with(|| Resource {
+                        name: None,
+                        on: None,
+                        var_blocks: Vec::new(),
+                        tasks: Vec::new(),
+                        programs: Vec::new(),
+                        span: t.span(),
+                    });
+                    self.resource_element(r);
+                    r.span = r.span.to(self.prev().span());
+                }
+                TokenKind::Semi => {
+                    self.bump();
+                }
+                _ => {
+                    let found = self.describe_current();
+                    let code = if is_item_end(t.kind) {
+                        Code::E0021
+                    } else {
+                        Code::E0020
+                    };
+                    let d = Diagnostic::new(
+                        code,
+                        t.span(),
+                        format!("expected `END_CONFIGURATION`, found {found}"),
+                    )
+                    .with_label(
+                        "expected RESOURCE, TASK, PROGRAM, a variable section or END_CONFIGURATION",
+                    )
+                    .with_secondary(opener, "this CONFIGURATION is not closed");
+                    self.report(d);
+                    if t.kind == TokenKind::Eof || is_item_start(t.kind) {
+                        break;
+                    }
+                    self.bump();
+                    self.skip_decl();
+                }
+            }
+        }
+        resources.extend(implicit);
+        Some(Configuration {
+            name,
+            var_blocks,
+            resources,
+            span: opener.to(self.prev().span()),
+        })
+    }
+
+    fn resource(&mut self) -> Option<Resource> {
+        let opener = self.bump().span();
+        let name = self.name("a resource name");
+        let on = if self.at_word("ON") {
+            self.bump();
+            self.name("a resource type name")
+        } else {
+            self.expected("`ON`");
+            None
+        };
+        let mut r = Resource {
+            name,
+            on,
+            var_blocks: Vec::new(),
+            tasks: Vec::new(),
+            programs: Vec::new(),
+            span: opener,
+        };
+        loop {
+            if self.aborted {
+                break;
+            }
+            let t = self.tok();
+            match t.kind {
+                TokenKind::Kw(Keyword::EndResource) => {
+                    self.bump();
+                    break;
+                }
+                k if is_var_block_start(k) => {
+                    if let Some(b) = self.var_block() {
+                        r.var_blocks.push(b);
+                    }
+                }
+                TokenKind::Kw(Keyword::Task) | TokenKind::Kw(Keyword::Program) => {
+                    self.resource_element(&mut r)
+                }
+                TokenKind::Semi => {
+                    self.bump();
+                }
+                _ => {
+                    let found = self.describe_current();
+                    let code = if matches!(t.kind, TokenKind::Kw(Keyword::EndConfiguration))
+                        || is_item_end(t.kind)
+                    {
+                        Code::E0021
+                    } else {
+                        Code::E0020
+                    };
+                    let d = Diagnostic::new(
+                        code,
+                        t.span(),
+                        format!("expected `END_RESOURCE`, found {found}"),
+                    )
+                    .with_label("expected TASK, PROGRAM, VAR_GLOBAL or END_RESOURCE")
+                    .with_secondary(opener, "this RESOURCE is not closed");
+                    self.report(d);
+                    if t.kind == TokenKind::Eof
+                        || is_item_start(t.kind)
+                        || matches!(
+                            t.kind,
+                            TokenKind::Kw(Keyword::EndConfiguration | Keyword::Resource)
+                        )
+                    {
+                        break;
+                    }
+                    self.bump();
+                    self.skip_decl();
+                }
+            }
+        }
+        r.span = opener.to(self.prev().span());
+        Some(r)
+    }
+
+    /// A TASK or PROGRAM declaration inside a resource.
+    fn resource_element(&mut self, r: &mut Resource) {
+        if self.at_kw(Keyword::Task) {
+            if let Some(t) = self.task() {
+                r.tasks.push(t);
+            }
+        } else if let Some(p) = self.program_config() {
+            r.programs.push(p);
+        }
+    }
+
+    /// `TASK name (SINGLE := s, INTERVAL := t, PRIORITY := p);`
+    fn task(&mut self) -> Option<TaskDecl> {
+        let start = self.bump().span();
+        let Some(name) = self.name("a task name") else {
+            self.skip_decl();
+            return None;
+        };
+        let mut task = TaskDecl {
+            name,
+            single: None,
+            interval: None,
+            priority: None,
+            span: start,
+        };
+        if self.expect(TokenKind::LParen) {
+            loop {
+                if self.at(TokenKind::RParen) {
+                    break;
+                }
+                let which = self.text_of(self.tok()).to_ascii_uppercase();
+                if !matches!(which.as_str(), "SINGLE" | "INTERVAL" | "PRIORITY")
+                    || self.kind() != TokenKind::Ident
+                {
+                    self.expected("SINGLE, INTERVAL or PRIORITY");
+                    self.skip_decl();
+                    return None;
+                }
+                self.bump();
+                if !self.expect(TokenKind::Assign) {
+                    self.skip_decl();
+                    return None;
+                }
+                let value = self.expr();
+                match which.as_str() {
+                    "SINGLE" => task.single = Some(value),
+                    "INTERVAL" => task.interval = Some(value),
+                    _ => task.priority = Some(value),
+                }
+                if !self.eat(TokenKind::Comma) {
+                    break;
+                }
+            }
+            if !self.expect(TokenKind::RParen) {
+                self.skip_decl();
+                return None;
+            }
+        } else {
+            self.skip_decl();
+            return None;
+        }
+        task.span = start.to(self.prev().span());
+        self.expect_decl_semi();
+        Some(task)
+    }
+
+    /// `PROGRAM [RETAIN] name [WITH task] : Type [(conns)];`
+    fn program_config(&mut self) -> Option<ProgramConfig> {
+        let start = self.bump().span();
+        let retention = if self.eat_kw(Keyword::Retain) {
+            Some(Retention::Retain)
+        } else if self.eat_kw(Keyword::NonRetain) {
+            Some(Retention::NonRetain)
+        } else {
+            None
+        };
+        let Some(name) = self.name("a program instance name") else {
+            self.skip_decl();
+            return None;
+        };
+        let task = if self.eat_kw(Keyword::With) {
+            self.name("a task name")
+        } else {
+            None
+        };
+        if !self.expect(TokenKind::Colon) {
+            self.skip_decl();
+            return None;
+        }
+        let Some(type_name) = self.name("a program type name") else {
+            self.skip_decl();
+            return None;
+        };
+        let mut conns = Vec::new();
+        if self.eat(TokenKind::LParen) {
+            if !self.at(TokenKind::RParen) {
+                loop {
+                    let lhs = self.postfix();
+                    match self.kind() {
+                        TokenKind::Assign => {
+                            self.bump();
+                            let value = self.expr();
+                            conns.push(ProgramConn::Input { name: lhs, value });
+                        }
+                        TokenKind::Arrow => {
+                            self.bump();
+                            let target = self.postfix();
+                            conns.push(ProgramConn::Output { name: lhs, target });
+                        }
+                        TokenKind::Kw(Keyword::With) => {
+                            self.bump();
+                            if let Some(task) = self.name("a task name") {
+                                conns.push(ProgramConn::FbTask { fb: lhs, task });
+                            }
+                        }
+                        _ => {
+                            self.expected("`:=`, `=>` or WITH");
+                            self.skip_decl();
+                            return None;
+                        }
+                    }
+                    if !self.eat(TokenKind::Comma) || self.aborted {
+                        break;
+                    }
+                }
+            }
+            if !self.expect(TokenKind::RParen) {
+                self.skip_decl();
+                return None;
+            }
+        }
+        let span = start.to(self.prev().span());
+        self.expect_decl_semi();
+        Some(ProgramConfig {
+            name,
+            retention,
+            task,
+            type_name,
+            conns,
+            span,
+        })
+    }
+}

@@ -1,0 +1,585 @@
+//! The parser: tokens to [`Ast`], by hand-written recursive descent with
+//! precedence climbing for expressions.
+//!
+//! Error recovery is the design driver. Each construct that fails reports one
+//! diagnostic and resynchronises at a point the grammar makes safe (the next
+//! `;` of a statement or declaration, the END keyword of a block, the next
+//! POU), so a file with three independent mistakes gets three diagnostics. A
+//! second error at the same token is never reported. Block ends are matched
+//! against a stack of the blocks that are open, so a missing `END_IF` is
+//! reported once at the construct that needed it, not again at every outer
+//! block.
+//!
+//! Deep nesting is bounded ([`MAX_NESTING`] for recursion, [`MAX_EXPR_DEPTH`]
+//! for the depth of an expression tree, including long left-associative
+//! chains) so that no input can overflow the stack of the parser or of any
+//! later phase walking the tree.
+
+mod decl;
+mod expr;
+mod stmt;
+
+use stc_diagnostics::{Code, Diagnostic, Span};
+
+use crate::ast::{Ast, ExprId, ExprKind, Ident, Item};
+use crate::intern::Interner;
+use crate::lexer::{lex, Trivia, TriviaKind};
+use crate::token::{Keyword, Token, TokenKind};
+
+/// Deepest recursion of nested statements, parentheses and types.
+pub const MAX_NESTING: u32 = 256;
+/// Deepest expression tree.
+pub const MAX_EXPR_DEPTH: u32 = 4096;
+
+/// What parsing one file produced besides the items added to the [`Ast`].
+pub struct FileParse {
+    pub trivia: Vec<Trivia>,
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+/// Lexes and parses one file (whose first byte is at `base` in the source
+/// map), appending its items to `ast`.
+pub fn parse_file(text: &str, base: u32, ast: &mut Ast, interner: &mut Interner) -> FileParse {
+    let lexed = lex(text, base);
+    let mut diagnostics = lexed.diagnostics;
+    let pragmas: Vec<Span> = lexed
+        .trivia
+        .iter()
+        .filter(|t| t.kind == TriviaKind::Pragma)
+        .map(|t| t.span)
+        .collect();
+    let first_expr = ast.exprs.len();
+    // A comment or pragma left open runs to the end of the file, which
+    // already has its error: "found end of file" would say it again.
+    let runs_to_eof = diagnostics
+        .iter()
+        .any(|d| matches!(d.code, Code::E0002 | Code::E0004));
+    let eof_index = lexed.tokens.len() - 1;
+    let mut p = Parser {
+        text,
+        base,
+        toks: lexed.tokens,
+        pos: 0,
+        ast,
+        interner,
+        diags: Vec::new(),
+        pragmas,
+        next_pragma: 0,
+        nesting: 0,
+        first_expr,
+        expr_depth: Vec::new(),
+        last_error_pos: if runs_to_eof { eof_index } else { usize::MAX },
+        aborted: false,
+        open: Vec::new(),
+    };
+    p.file();
+    diagnostics.append(&mut p.diags);
+    for span in p
+        .pragmas
+        .iter()
+        .filter(|s| text.as_bytes()[(s.hi - base) as usize - 1] == b'}')
+    {
+        diagnostics.push(pragma_diagnostic(
+            *span,
+            &text[(span.lo - base) as usize..(span.hi - base) as usize],
+        ));
+    }
+    diagnostics.sort_by_key(|d| d.span.lo);
+    FileParse {
+        trivia: lexed.trivia,
+        diagnostics,
+    }
+}
+
+fn pragma_diagnostic(span: Span, text: &str) -> Diagnostic {
+    let inner = text.trim_start_matches('{').trim_end_matches('}').trim();
+    let word: String = inner
+        .chars()
+        .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+        .collect();
+    if word.eq_ignore_ascii_case("attribute") {
+        Diagnostic::new(
+            Code::E0030,
+            span,
+            "`{attribute ...}` pragmas are not supported yet",
+        )
+        .with_label("not supported yet")
+    } else {
+        let shown: String = text.chars().take(40).collect();
+        Diagnostic::new(
+            Code::W0002,
+            span,
+            format!("pragma `{shown}` is not understood and is ignored"),
+        )
+    }
+}
+
+/// Blocks that can be open while statements are parsed, for END matching.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub(crate) enum Open {
+    If,
+    Case,
+    For,
+    While,
+    Repeat,
+}
+
+impl Open {
+    fn end(self) -> Keyword {
+        match self {
+            Open::If => Keyword::EndIf,
+            Open::Case => Keyword::EndCase,
+            Open::For => Keyword::EndFor,
+            Open::While => Keyword::EndWhile,
+            Open::Repeat => Keyword::EndRepeat,
+        }
+    }
+}
+
+pub(crate) struct Parser<'a> {
+    text: &'a str,
+    base: u32,
+    toks: Vec<Token>,
+    pos: usize,
+    ast: &'a mut Ast,
+    interner: &'a mut Interner,
+    diags: Vec<Diagnostic>,
+    /// Pragma spans not yet attached to an item.
+    pragmas: Vec<Span>,
+    next_pragma: usize,
+    nesting: u32,
+    /// Id of the first expression of this file; `expr_depth` is indexed from it.
+    first_expr: usize,
+    expr_depth: Vec<u32>,
+    /// Token index of the last error, to report at most one per token.
+    last_error_pos: usize,
+    /// Set when nesting limits are hit: the rest of the file is skipped.
+    aborted: bool,
+    /// Blocks open around the statement being parsed.
+    open: Vec<Open>,
+}
+
+/// Keywords that begin a top-level declaration.
+fn is_item_start(k: TokenKind) -> bool {
+    matches!(
+        k,
+        TokenKind::Kw(
+            Keyword::Function
+                | Keyword::FunctionBlock
+                | Keyword::Program
+                | Keyword::Configuration
+                | Keyword::Type
+        )
+    )
+}
+
+/// Keywords that end a POU or another top-level construct.
+fn is_item_end(k: TokenKind) -> bool {
+    matches!(
+        k,
+        TokenKind::Kw(
+            Keyword::EndFunction
+                | Keyword::EndFunctionBlock
+                | Keyword::EndProgram
+                | Keyword::EndConfiguration
+                | Keyword::EndResource
+                | Keyword::EndType
+        )
+    )
+}
+
+fn is_var_block_start(k: TokenKind) -> bool {
+    matches!(
+        k,
+        TokenKind::Kw(
+            Keyword::Var
+                | Keyword::VarInput
+                | Keyword::VarOutput
+                | Keyword::VarInOut
+                | Keyword::VarExternal
+                | Keyword::VarGlobal
+                | Keyword::VarTemp
+                | Keyword::VarAccess
+                | Keyword::VarConfig
+        )
+    )
+}
+
+impl<'a> Parser<'a> {
+    // ----- token access -------------------------------------------------
+
+    fn tok(&self) -> Token {
+        self.toks[self.pos]
+    }
+
+    fn kind(&self) -> TokenKind {
+        self.toks[self.pos].kind
+    }
+
+    fn nth(&self, n: usize) -> Token {
+        self.toks[(self.pos + n).min(self.toks.len() - 1)]
+    }
+
+    fn nth_kind(&self, n: usize) -> TokenKind {
+        self.nth(n).kind
+    }
+
+    fn at(&self, k: TokenKind) -> bool {
+        self.kind() == k
+    }
+
+    fn at_kw(&self, k: Keyword) -> bool {
+        self.kind() == TokenKind::Kw(k)
+    }
+
+    fn bump(&mut self) -> Token {
+        let t = self.toks[self.pos];
+        if t.kind != TokenKind::Eof {
+            self.pos += 1;
+        }
+        t
+    }
+
+    fn eat(&mut self, k: TokenKind) -> bool {
+        if self.at(k) {
+            self.bump();
+            true
+        } else {
+            false
+        }
+    }
+
+    fn eat_kw(&mut self, k: Keyword) -> bool {
+        self.eat(TokenKind::Kw(k))
+    }
+
+    fn text_of(&self, t: Token) -> &'a str {
+        let lo = (t.lo - self.base) as usize;
+        let hi = (t.hi - self.base) as usize;
+        &self.text[lo..hi]
+    }
+
+    /// The current token is an identifier spelled `word` (case-insensitive):
+    /// how contextual keywords (PRIORITY, ON, STEP...) are recognised.
+    fn at_word(&self, word: &str) -> bool {
+        self.nth_is_word(0, word)
+    }
+
+    fn nth_is_word(&self, n: usize, word: &str) -> bool {
+        let t = self.nth(n);
+        t.kind == TokenKind::Ident && self.text_of(t).eq_ignore_ascii_case(word)
+    }
+
+    /// Whether two tokens are on different lines.
+    fn newline_between(&self, a: Token, b: Token) -> bool {
+        let lo = (a.hi - self.base) as usize;
+        let hi = (b.lo - self.base) as usize;
+        self.text.as_bytes()[lo..hi].contains(&b'\n')
+    }
+
+    fn prev(&self) -> Token {
+        self.toks[self.pos.saturating_sub(1)]
+    }
+
+    // ----- diagnostics --------------------------------------------------
+
+    /// Reports at the current token unless an error was already reported
+    /// there.
+    fn report(&mut self, d: Diagnostic) {
+        if self.last_error_pos == self.pos {
+            return;
+        }
+        self.last_error_pos = self.pos;
+        self.diags.push(d);
+    }
+
+    /// Reports wherever `d` points, without the one-per-token rule.
+    fn report_always(&mut self, d: Diagnostic) {
+        self.diags.push(d);
+    }
+
+    fn describe_current(&self) -> String {
+        let t = self.tok();
+        match t.kind {
+            TokenKind::Ident => format!("`{}`", self.text_of(t)),
+            TokenKind::Kw(_) | TokenKind::Elem(_) | TokenKind::Generic(_) => {
+                format!("`{}`", self.text_of(t))
+            }
+            TokenKind::Int
+            | TokenKind::BasedInt
+            | TokenKind::Real
+            | TokenKind::SString
+            | TokenKind::WString
+            | TokenKind::Duration
+            | TokenKind::Date
+            | TokenKind::Tod
+            | TokenKind::Dt
+            | TokenKind::Address => {
+                let text: String = self.text_of(t).chars().take(30).collect();
+                format!("{} `{}`", t.kind.describe(), text)
+            }
+            k => k.describe(),
+        }
+    }
+
+    /// "expected X, found Y" at the current token.
+    fn expected(&mut self, what: &str) {
+        let found = self.describe_current();
+        let d = Diagnostic::new(
+            Code::E0020,
+            self.tok().span(),
+            format!("expected {what}, found {found}"),
+        )
+        .with_label(format!("expected {what}"));
+        self.report(d);
+    }
+
+    fn expect(&mut self, k: TokenKind) -> bool {
+        if self.eat(k) {
+            true
+        } else {
+            self.expected(&k.describe());
+            false
+        }
+    }
+
+    fn expect_kw(&mut self, k: Keyword) -> bool {
+        self.expect(TokenKind::Kw(k))
+    }
+
+    /// Enters one level of nesting; false (after reporting E0023 once and
+    /// aborting the file) when the limit is reached.
+    fn enter(&mut self) -> bool {
+        if self.aborted {
+            return false;
+        }
+        if self.nesting >= MAX_NESTING {
+            let d = Diagnostic::new(
+                Code::E0023,
+                self.tok().span(),
+                format!("nesting too deep: more than {MAX_NESTING} levels"),
+            )
+            .with_help("split the construct with intermediate variables or POUs");
+            self.report(d);
+            self.aborted = true;
+            return false;
+        }
+        self.nesting += 1;
+        true
+    }
+
+    fn leave(&mut self) {
+        self.nesting = self.nesting.saturating_sub(1);
+    }
+
+    // ----- names --------------------------------------------------------
+
+    fn intern_token(&mut self, t: Token) -> Ident {
+        let sym = self.interner.intern(self.text_of(t));
+        Ident {
+            sym,
+            span: t.span(),
+        }
+    }
+
+    /// A name being declared or referenced. A reserved word in its place is
+    /// reported (E0022) and then accepted, so parsing goes on normally.
+    fn name(&mut self, what: &str) -> Option<Ident> {
+        let t = self.tok();
+        match t.kind {
+            TokenKind::Ident => {
+                self.bump();
+                Some(self.intern_token(t))
+            }
+            k if k.is_reserved_word() && self.reserved_name_plausible() => {
+                let d = Diagnostic::new(
+                    Code::E0022,
+                    t.span(),
+                    format!(
+                        "`{}` is a reserved word and cannot be used as a name",
+                        self.text_of(t)
+                    ),
+                )
+                .with_label("reserved word");
+                self.report(d);
+                self.bump();
+                Some(self.intern_token(t))
+            }
+            _ => {
+                self.expected(what);
+                None
+            }
+        }
+    }
+
+    /// After a reserved word where a name is expected: does the next token
+    /// suggest the word was meant as a name (`if : INT;`, `int,`)?
+    fn reserved_name_plausible(&self) -> bool {
+        matches!(
+            self.nth_kind(1),
+            TokenKind::Colon | TokenKind::Comma | TokenKind::Assign | TokenKind::Semi
+        ) || matches!(self.nth(1).kind, TokenKind::Kw(Keyword::At))
+    }
+
+    // ----- expressions arena --------------------------------------------
+
+    fn depth_of(&self, id: ExprId) -> u32 {
+        self.expr_depth
+            .get(id.index().wrapping_sub(self.first_expr))
+            .copied()
+            .unwrap_or(0)
+    }
+
+    /// Allocates an expression whose children have the given greatest depth.
+    fn mk(&mut self, kind: ExprKind, span: Span, child_depth: u32) -> ExprId {
+        let depth = child_depth + 1;
+        if depth > MAX_EXPR_DEPTH && !self.aborted {
+            let d = Diagnostic::new(
+                Code::E0023,
+                span,
+                format!("expression nested too deeply: more than {MAX_EXPR_DEPTH} levels"),
+            )
+            .with_help("split the expression with intermediate variables");
+            self.report_always(d);
+            self.aborted = true;
+        }
+        let id = self.ast.alloc(kind, span);
+        self.expr_depth.push(depth);
+        id
+    }
+
+    fn error_expr(&mut self, span: Span) -> ExprId {
+        self.mk(ExprKind::Error, span, 0)
+    }
+
+    fn expr_span(&self, id: ExprId) -> Span {
+        self.ast.expr(id).span
+    }
+
+    // ----- pragmas --------------------------------------------------------
+
+    /// Pragmas written before position `pos` and not yet attached.
+    fn take_pragmas(&mut self, pos: u32) -> Vec<Span> {
+        let start = self.next_pragma;
+        while self.next_pragma < self.pragmas.len() && self.pragmas[self.next_pragma].hi <= pos {
+            self.next_pragma += 1;
+        }
+        self.pragmas[start..self.next_pragma].to_vec()
+    }
+
+    // ----- recovery -------------------------------------------------------
+
+    /// Skips to the start of the next top-level declaration.
+    fn skip_to_item(&mut self) {
+        while !self.at(TokenKind::Eof)
+            && !is_item_start(self.kind())
+            && !self.at_kw(Keyword::VarGlobal)
+        {
+            self.bump();
+        }
+    }
+
+    /// Skips a construct that stc does not support, up to and including the
+    /// identifier `end_word` (END_METHOD, END_INTERFACE...), or up to a token
+    /// that cannot be inside it.
+    fn skip_unsupported(&mut self, end_word: &str, stop: fn(TokenKind) -> bool) {
+        while !self.at(TokenKind::Eof) {
+            if self.at_word(end_word) {
+                self.bump();
+                self.eat(TokenKind::Semi);
+                return;
+            }
+            if stop(self.kind()) {
+                return;
+            }
+            self.bump();
+        }
+    }
+
+    fn unsupported(&mut self, span: Span, what: &str) {
+        let d = Diagnostic::new(Code::E0030, span, format!("{what} not supported yet"))
+            .with_label("not supported yet");
+        self.report(d);
+    }
+
+    // ----- top level ------------------------------------------------------
+
+    fn file(&mut self) {
+        while !self.at(TokenKind::Eof) && !self.aborted {
+            let before = self.pos;
+            if let Some(item) = self.item() {
+                self.ast.items.push(item);
+            }
+            if self.pos == before && !self.at(TokenKind::Eof) {
+                self.bump();
+            }
+        }
+    }
+
+    fn item(&mut self) -> Option<Item> {
+        let t = self.tok();
+        let pragmas = self.take_pragmas(t.lo);
+        match t.kind {
+            TokenKind::Kw(Keyword::Type) => self.type_block(pragmas),
+            TokenKind::Kw(Keyword::Function) => self
+                .pou(crate::ast::PouKind::Function, pragmas)
+                .map(Item::Pou),
+            TokenKind::Kw(Keyword::FunctionBlock) => self
+                .pou(crate::ast::PouKind::FunctionBlock, pragmas)
+                .map(Item::Pou),
+            TokenKind::Kw(Keyword::Program) => self
+                .pou(crate::ast::PouKind::Program, pragmas)
+                .map(Item::Pou),
+            TokenKind::Kw(Keyword::Configuration) => self.configuration().map(Item::Configuration),
+            TokenKind::Kw(Keyword::VarGlobal) => self.var_block().map(Item::GlobalVars),
+            TokenKind::Semi => {
+                // A stray `;` after END_FUNCTION and the like is harmless.
+                self.bump();
+                None
+            }
+            TokenKind::Ident if self.at_unsupported_item() => None,
+            _ => {
+                self.expected(
+                    "a declaration (TYPE, FUNCTION, FUNCTION_BLOCK, PROGRAM or CONFIGURATION)",
+                );
+                self.bump();
+                self.skip_to_item();
+                None
+            }
+        }
+    }
+
+    /// INTERFACE, NAMESPACE, a stand-alone METHOD or ACTION: reported once and
+    /// skipped whole.
+    fn at_unsupported_item(&mut self) -> bool {
+        for (word, end, what) in [
+            ("INTERFACE", "END_INTERFACE", "interfaces are"),
+            ("NAMESPACE", "END_NAMESPACE", "namespaces are"),
+            ("METHOD", "END_METHOD", "methods are"),
+            ("PROPERTY", "END_PROPERTY", "properties are"),
+            ("ACTION", "END_ACTION", "actions are"),
+        ] {
+            if self.at_word(word) && self.nth_kind(1) == TokenKind::Ident {
+                let span = self.tok().span();
+                self.unsupported(span, what);
+                self.skip_unsupported(end, is_item_start);
+                return true;
+            }
+        }
+        false
+    }
+}
+
+/// Parses a whole project: every file of the source map, in order.
+pub fn parse_project(
+    sources: &stc_diagnostics::SourceMap,
+    interner: &mut Interner,
+) -> (Ast, Vec<Diagnostic>) {
+    let mut ast = Ast::default();
+    let mut diags = Vec::new();
+    for (_, f) in sources.files() {
+        let r = parse_file(&f.text, f.base, &mut ast, interner);
+        diags.extend(r.diagnostics);
+    }
+    (ast, diags)
+}

@@ -1,0 +1,589 @@
+//! Writes a syntax tree back as Structured Text.
+//!
+//! The output parses back to the same tree (the round-trip property every
+//! syntax test checks). Parentheses are printed where the tree has them and
+//! wherever precedence requires them, so trees built by a program (not by
+//! the parser) print correctly too. Layout is canonical: this is the seed of
+//! the formatter.
+
+use std::fmt::Write;
+
+use stc_diagnostics::Span;
+
+use crate::ast::*;
+use crate::dump::literal_text;
+use crate::intern::Interner;
+
+/// Precedence of postfix expressions (calls, members, indexing) and primaries.
+const POSTFIX: u8 = 10;
+
+/// Prints the whole tree. `pragma_text` gives a pragma's source text from its
+/// span, so pragmas are kept; pass `&|_| String::new()` to drop them.
+pub fn print(ast: &Ast, interner: &Interner, pragma_text: &dyn Fn(Span) -> String) -> String {
+    let mut p = Printer {
+        ast,
+        interner,
+        pragma_text,
+        out: String::new(),
+        indent: 0,
+    };
+    for (i, item) in ast.items.iter().enumerate() {
+        if i > 0 {
+            p.out.push('\n');
+        }
+        p.item(item);
+    }
+    p.out
+}
+
+struct Printer<'a> {
+    ast: &'a Ast,
+    interner: &'a Interner,
+    pragma_text: &'a dyn Fn(Span) -> String,
+    out: String,
+    indent: usize,
+}
+
+impl Printer<'_> {
+    fn line(&mut self, text: &str) {
+        for _ in 0..self.indent {
+            self.out.push_str("    ");
+        }
+        self.out.push_str(text);
+        self.out.push('\n');
+    }
+
+    fn nested(&mut self, f: impl FnOnce(&mut Self)) {
+        self.indent += 1;
+        f(self);
+        self.indent -= 1;
+    }
+
+    fn name(&self, i: Ident) -> &str {
+        self.interner.spelling(i.sym)
+    }
+
+    fn pragmas(&mut self, pragmas: &[Span]) {
+        for &p in pragmas {
+            let text = (self.pragma_text)(p);
+            if !text.is_empty() {
+                self.line(&text);
+            }
+        }
+    }
+
+    fn item(&mut self, item: &Item) {
+        match item {
+            Item::Types(decls, _) => {
+                self.line("TYPE");
+                self.nested(|p| {
+                    for t in decls {
+                        p.pragmas(&t.pragmas);
+                        let head = format!("{} : ", p.name(t.name));
+                        let init = t.init.as_ref().map(|i| p.init(i));
+                        p.typed_line(&head, &t.spec, None, init.as_deref());
+                    }
+                });
+                self.line("END_TYPE");
+            }
+            Item::Pou(pou) => self.pou(pou),
+            Item::Configuration(c) => self.configuration(c),
+            Item::GlobalVars(b) => self.var_block(b),
+        }
+    }
+
+    /// `head TYPE [suffix] [:= init];`, with STRUCT types spread over lines.
+    fn typed_line(
+        &mut self,
+        head: &str,
+        spec: &TypeSpec,
+        suffix: Option<&str>,
+        init: Option<&str>,
+    ) {
+        let tail = {
+            let mut t = String::new();
+            if let Some(s) = suffix {
+                let _ = write!(t, " {s}");
+            }
+            if let Some(i) = init {
+                let _ = write!(t, " := {i}");
+            }
+            t.push(';');
+            t
+        };
+        match &spec.kind {
+            TypeSpecKind::Struct { members } => {
+                self.line(&format!("{head}STRUCT"));
+                self.nested(|p| {
+                    for m in members {
+                        p.var_decl(m);
+                    }
+                });
+                self.line(&format!("END_STRUCT{tail}"));
+            }
+            TypeSpecKind::Array { dims, elem } if contains_struct(elem) => {
+                let head = format!("{head}ARRAY[{}] OF ", self.dims(dims));
+                self.typed_line(&head, elem, suffix, init);
+            }
+            _ => {
+                let t = self.type_text(spec);
+                self.line(&format!("{head}{t}{tail}"));
+            }
+        }
+    }
+
+    fn pou(&mut self, pou: &Pou) {
+        self.pragmas(&pou.pragmas);
+        let mut head = format!("{} {}", pou.kind.keyword(), self.name(pou.name));
+        if let Some(r) = &pou.return_type {
+            let _ = write!(head, " : {}", self.type_text(r));
+        }
+        self.line(&head);
+        self.nested(|p| {
+            for b in &pou.var_blocks {
+                p.var_block(b);
+            }
+            p.stmts(&pou.body);
+        });
+        self.line(pou.kind.end_keyword());
+    }
+
+    fn var_block(&mut self, b: &VarBlock) {
+        let mut head = b.kind.keyword().to_string();
+        if b.constant {
+            head.push_str(" CONSTANT");
+        }
+        match b.retention {
+            Some(Retention::Retain) => head.push_str(" RETAIN"),
+            Some(Retention::NonRetain) => head.push_str(" NON_RETAIN"),
+            None => {}
+        }
+        self.line(&head);
+        self.nested(|p| match &b.items {
+            VarBlockItems::Vars(vs) => {
+                for v in vs {
+                    p.var_decl(v);
+                }
+            }
+            VarBlockItems::Access(a) => {
+                for a in a {
+                    let resource = a
+                        .resource
+                        .map(|r| format!("{}.", p.name(r)))
+                        .unwrap_or_default();
+                    let mut text = format!(
+                        "{} : {resource}{} : {}",
+                        p.name(a.name),
+                        p.expr(a.path, 0),
+                        p.type_text(&a.ty)
+                    );
+                    match a.direction {
+                        Some(AccessDirection::ReadOnly) => text.push_str(" READ_ONLY"),
+                        Some(AccessDirection::ReadWrite) => text.push_str(" READ_WRITE"),
+                        None => {}
+                    }
+                    text.push(';');
+                    p.line(&text);
+                }
+            }
+            VarBlockItems::Config(c) => {
+                for c in c {
+                    let path: Vec<&str> = c.path.iter().map(|i| p.name(*i)).collect();
+                    let mut head = path.join(".");
+                    if let Some(l) = &c.location {
+                        let _ = write!(head, " AT {}", l.address);
+                    }
+                    head.push_str(" : ");
+                    let init = c.init.as_ref().map(|i| p.init(i));
+                    p.typed_line(&head, &c.ty, None, init.as_deref());
+                }
+            }
+        });
+        self.line("END_VAR");
+    }
+
+    fn var_decl(&mut self, v: &VarDecl) {
+        self.pragmas(&v.pragmas);
+        let names: Vec<&str> = v.names.iter().map(|i| self.name(*i)).collect();
+        let mut head = names.join(", ");
+        if let Some(l) = &v.location {
+            if !head.is_empty() {
+                head.push(' ');
+            }
+            let _ = write!(head, "AT {}", l.address);
+        }
+        head.push_str(" : ");
+        let edge = match v.edge {
+            Some(Edge::Rising) => Some("R_EDGE"),
+            Some(Edge::Falling) => Some("F_EDGE"),
+            None => None,
+        };
+        let init = v.init.as_ref().map(|i| self.init(i));
+        self.typed_line(&head, &v.ty, edge, init.as_deref());
+    }
+
+    fn configuration(&mut self, c: &Configuration) {
+        self.line(&format!("CONFIGURATION {}", self.name(c.name)));
+        self.nested(|p| {
+            for b in &c.var_blocks {
+                p.var_block(b);
+            }
+            for r in &c.resources {
+                match r.name {
+                    Some(n) => {
+                        let mut head = format!("RESOURCE {}", p.name(n));
+                        if let Some(on) = r.on {
+                            let _ = write!(head, " ON {}", p.name(on));
+                        }
+                        p.line(&head);
+                        p.nested(|p| p.resource_body(r));
+                        p.line("END_RESOURCE");
+                    }
+                    None => p.resource_body(r),
+                }
+            }
+        });
+        self.line("END_CONFIGURATION");
+    }
+
+    fn resource_body(&mut self, r: &Resource) {
+        for b in &r.var_blocks {
+            self.var_block(b);
+        }
+        for t in &r.tasks {
+            let mut parts = Vec::new();
+            for (k, v) in [
+                ("SINGLE", t.single),
+                ("INTERVAL", t.interval),
+                ("PRIORITY", t.priority),
+            ] {
+                if let Some(v) = v {
+                    parts.push(format!("{k} := {}", self.expr(v, 0)));
+                }
+            }
+            let text = format!("TASK {} ({});", self.name(t.name), parts.join(", "));
+            self.line(&text);
+        }
+        for prog in &r.programs {
+            let mut text = String::from("PROGRAM ");
+            match prog.retention {
+                Some(Retention::Retain) => text.push_str("RETAIN "),
+                Some(Retention::NonRetain) => text.push_str("NON_RETAIN "),
+                None => {}
+            }
+            text.push_str(self.name(prog.name));
+            if let Some(t) = prog.task {
+                let _ = write!(text, " WITH {}", self.name(t));
+            }
+            let _ = write!(text, " : {}", self.name(prog.type_name));
+            if !prog.conns.is_empty() {
+                let conns: Vec<String> = prog
+                    .conns
+                    .iter()
+                    .map(|c| match c {
+                        ProgramConn::Input { name, value } => {
+                            format!("{} := {}", self.expr(*name, 0), self.expr(*value, 0))
+                        }
+                        ProgramConn::Output { name, target } => {
+                            format!("{} => {}", self.expr(*name, 0), self.expr(*target, 0))
+                        }
+                        ProgramConn::FbTask { fb, task } => {
+                            format!("{} WITH {}", self.expr(*fb, 0), self.name(*task))
+                        }
+                    })
+                    .collect();
+                let _ = write!(text, " ({})", conns.join(", "));
+            }
+            text.push(';');
+            self.line(&text);
+        }
+    }
+
+    fn stmts(&mut self, stmts: &[Stmt]) {
+        for s in stmts {
+            self.stmt(s);
+        }
+    }
+
+    fn stmt(&mut self, s: &Stmt) {
+        match &s.kind {
+            StmtKind::Empty => self.line(";"),
+            StmtKind::Error => self.line("(* unparsable statement *)"),
+            StmtKind::Assign { target, value } => {
+                let text = format!("{} := {};", self.expr(*target, 0), self.expr(*value, 0));
+                self.line(&text);
+            }
+            StmtKind::Call(e) => {
+                let text = format!("{};", self.expr(*e, 0));
+                self.line(&text);
+            }
+            StmtKind::If {
+                branches,
+                else_body,
+            } => {
+                for (i, b) in branches.iter().enumerate() {
+                    let kw = if i == 0 { "IF" } else { "ELSIF" };
+                    let text = format!("{kw} {} THEN", self.expr(b.cond, 0));
+                    self.line(&text);
+                    self.nested(|p| p.stmts(&b.body));
+                }
+                if let Some(e) = else_body {
+                    self.line("ELSE");
+                    self.nested(|p| p.stmts(e));
+                }
+                self.line("END_IF;");
+            }
+            StmtKind::Case {
+                selector,
+                arms,
+                else_body,
+            } => {
+                let text = format!("CASE {} OF", self.expr(*selector, 0));
+                self.line(&text);
+                self.nested(|p| {
+                    for a in arms {
+                        let labels: Vec<String> = a
+                            .labels
+                            .iter()
+                            .map(|l| match l {
+                                CaseLabel::Value(v) => p.expr(*v, 0),
+                                CaseLabel::Range(lo, hi) => {
+                                    format!("{}..{}", p.expr(*lo, 0), p.expr(*hi, 0))
+                                }
+                            })
+                            .collect();
+                        p.line(&format!("{}:", labels.join(", ")));
+                        p.nested(|p| p.stmts(&a.body));
+                    }
+                    if let Some(e) = else_body {
+                        p.line("ELSE");
+                        p.nested(|p| p.stmts(e));
+                    }
+                });
+                self.line("END_CASE;");
+            }
+            StmtKind::For {
+                var,
+                from,
+                to,
+                by,
+                body,
+            } => {
+                let mut text = format!(
+                    "FOR {} := {} TO {}",
+                    self.name(*var),
+                    self.expr(*from, 0),
+                    self.expr(*to, 0)
+                );
+                if let Some(b) = by {
+                    let _ = write!(text, " BY {}", self.expr(*b, 0));
+                }
+                text.push_str(" DO");
+                self.line(&text);
+                self.nested(|p| p.stmts(body));
+                self.line("END_FOR;");
+            }
+            StmtKind::While { cond, body } => {
+                let text = format!("WHILE {} DO", self.expr(*cond, 0));
+                self.line(&text);
+                self.nested(|p| p.stmts(body));
+                self.line("END_WHILE;");
+            }
+            StmtKind::Repeat { body, until } => {
+                self.line("REPEAT");
+                self.nested(|p| p.stmts(body));
+                let text = format!("UNTIL {}", self.expr(*until, 0));
+                self.line(&text);
+                self.line("END_REPEAT;");
+            }
+            StmtKind::Exit => self.line("EXIT;"),
+            StmtKind::Continue => self.line("CONTINUE;"),
+            StmtKind::Return => self.line("RETURN;"),
+        }
+    }
+
+    fn dims(&self, dims: &[ArrayDim]) -> String {
+        let ds: Vec<String> = dims
+            .iter()
+            .map(|d| match d {
+                ArrayDim::Range { lo, hi } => {
+                    format!("{}..{}", self.expr(*lo, 0), self.expr(*hi, 0))
+                }
+                ArrayDim::Star(_) => "*".into(),
+            })
+            .collect();
+        ds.join(", ")
+    }
+
+    fn type_text(&self, t: &TypeSpec) -> String {
+        match &t.kind {
+            TypeSpecKind::Error => "(* unparsable type *) INT".into(),
+            TypeSpecKind::Elementary(e) => e.name().into(),
+            TypeSpecKind::Generic(g) => g.name().into(),
+            TypeSpecKind::Named(n) => self.name(*n).into(),
+            TypeSpecKind::String { wide, len } => {
+                let kw = if *wide { "WSTRING" } else { "STRING" };
+                match len {
+                    Some(l) => format!("{kw}[{}]", self.expr(*l, 0)),
+                    None => kw.into(),
+                }
+            }
+            TypeSpecKind::Subrange { base, lo, hi } => {
+                format!(
+                    "{} ({}..{})",
+                    self.type_text(base),
+                    self.expr(*lo, 0),
+                    self.expr(*hi, 0)
+                )
+            }
+            TypeSpecKind::Enum { values, base } => {
+                let vs: Vec<String> = values
+                    .iter()
+                    .map(|m| match m.value {
+                        Some(v) => format!("{} := {}", self.name(m.name), self.expr(v, 0)),
+                        None => self.name(m.name).into(),
+                    })
+                    .collect();
+                match base {
+                    Some(b) => format!("{} ({})", self.type_text(b), vs.join(", ")),
+                    None => format!("({})", vs.join(", ")),
+                }
+            }
+            TypeSpecKind::Array { dims, elem } => {
+                format!("ARRAY[{}] OF {}", self.dims(dims), self.type_text(elem))
+            }
+            // Inline structs only occur nested in arrays of arrays; print
+            // them on one line.
+            TypeSpecKind::Struct { members } => {
+                let mut s = String::from("STRUCT ");
+                for m in members {
+                    let names: Vec<&str> = m.names.iter().map(|i| self.name(*i)).collect();
+                    let _ = write!(s, "{} : {}", names.join(", "), self.type_text(&m.ty));
+                    if let Some(i) = &m.init {
+                        let _ = write!(s, " := {}", self.init(i));
+                    }
+                    s.push_str("; ");
+                }
+                s.push_str("END_STRUCT");
+                s
+            }
+        }
+    }
+
+    fn init(&self, i: &Init) -> String {
+        match &i.kind {
+            InitKind::Expr(e) => self.expr(*e, 0),
+            InitKind::Array(elems) => {
+                let es: Vec<String> = elems
+                    .iter()
+                    .map(|e| {
+                        let vs: Vec<String> = e.values.iter().map(|v| self.init(v)).collect();
+                        let v = vs.join(", ");
+                        match e.repeat {
+                            Some(n) => format!("{}({v})", self.expr(n, POSTFIX)),
+                            None => v,
+                        }
+                    })
+                    .collect();
+                format!("[{}]", es.join(", "))
+            }
+            InitKind::Struct(elems) => {
+                let es: Vec<String> = elems
+                    .iter()
+                    .map(|e| format!("{} := {}", self.name(e.name), self.init(&e.value)))
+                    .collect();
+                format!("({})", es.join(", "))
+            }
+        }
+    }
+
+    /// An expression in a context that binds at `ctx` (0: anywhere).
+    fn expr(&self, id: ExprId, ctx: u8) -> String {
+        let e = self.ast.expr(id);
+        let (text, prec) = match &e.kind {
+            ExprKind::Error => ("(* error *) 0".into(), POSTFIX),
+            ExprKind::Literal(l) => (literal_text(l, self.interner), POSTFIX),
+            ExprKind::Name(n) => (self.name(*n).into(), POSTFIX),
+            ExprKind::EnumValue { ty, value } => {
+                (format!("{}#{}", self.name(*ty), self.name(*value)), POSTFIX)
+            }
+            ExprKind::Address(a) => (a.to_string(), POSTFIX),
+            ExprKind::Member { base, member } => (
+                format!("{}.{}", self.expr(*base, POSTFIX), self.name(*member)),
+                POSTFIX,
+            ),
+            ExprKind::PartialAccess { base, size, index } => (
+                format!("{}.%{}{index}", self.expr(*base, POSTFIX), size.letter()),
+                POSTFIX,
+            ),
+            ExprKind::Index { base, indices } => {
+                let is: Vec<String> = indices.iter().map(|i| self.expr(*i, 0)).collect();
+                (
+                    format!("{}[{}]", self.expr(*base, POSTFIX), is.join(", ")),
+                    POSTFIX,
+                )
+            }
+            ExprKind::Call { callee, args } => {
+                let a: Vec<String> = args
+                    .iter()
+                    .map(|a| match &a.kind {
+                        ArgKind::Positional(v) => self.expr(*v, 0),
+                        ArgKind::Input { name, value } => {
+                            format!("{} := {}", self.name(*name), self.expr(*value, 0))
+                        }
+                        ArgKind::Output {
+                            name,
+                            negated,
+                            target,
+                        } => {
+                            let not = if *negated { "NOT " } else { "" };
+                            format!("{not}{} => {}", self.name(*name), self.expr(*target, 0))
+                        }
+                    })
+                    .collect();
+                (
+                    format!("{}({})", self.expr(*callee, POSTFIX), a.join(", ")),
+                    POSTFIX,
+                )
+            }
+            ExprKind::Unary { op, operand } => {
+                let inner = self.expr(*operand, UNARY_PRECEDENCE);
+                let text = match op {
+                    UnaryOp::Not => format!("NOT {inner}"),
+                    UnaryOp::Neg if inner.starts_with('-') => format!("- {inner}"),
+                    UnaryOp::Neg => format!("-{inner}"),
+                    UnaryOp::Plus if inner.starts_with('+') => format!("+ {inner}"),
+                    UnaryOp::Plus => format!("+{inner}"),
+                };
+                (text, UNARY_PRECEDENCE)
+            }
+            ExprKind::Binary { op, lhs, rhs } => {
+                let p = op.precedence();
+                let (l, r) = if *op == BinaryOp::Pow {
+                    let rhs_ctx = match self.ast.expr(*rhs).kind {
+                        ExprKind::Unary { .. } => UNARY_PRECEDENCE,
+                        _ => POSTFIX,
+                    };
+                    (self.expr(*lhs, p), self.expr(*rhs, rhs_ctx))
+                } else {
+                    (self.expr(*lhs, p), self.expr(*rhs, p + 1))
+                };
+                (format!("{l} {} {r}", op.symbol()), p)
+            }
+            ExprKind::Paren(inner) => (format!("({})", self.expr(*inner, 0)), POSTFIX),
+        };
+        if prec < ctx {
+            format!("({text})")
+        } else {
+            text
+        }
+    }
+}
+
+fn contains_struct(t: &TypeSpec) -> bool {
+    match &t.kind {
+        TypeSpecKind::Struct { .. } => true,
+        TypeSpecKind::Array { elem, .. } => contains_struct(elem),
+        _ => false,
+    }
+}

@@ -132,6 +132,36 @@ pub fn main(args: Vec<OsString>) -> u8 {
     outcome.status
 }
 
+/// Runs a command line in-process and returns what it would print (files
+/// named by `-o` are written). For tests: the same path as the command.
+pub fn run_args(args: &[&str]) -> Outcome {
+    match Cli::try_parse_from(args) {
+        Ok(cli) => {
+            let outcome = driver::with_big_stack(move || run(cli));
+            if let Some((path, bytes)) = &outcome.file {
+                if let Err(e) = std::fs::write(path, bytes) {
+                    return usage_error(format!("cannot write {}: {e}", path.display()));
+                }
+            }
+            outcome
+        }
+        Err(e) => Outcome {
+            stdout: if e.use_stderr() {
+                String::new()
+            } else {
+                e.to_string()
+            },
+            stderr: if e.use_stderr() {
+                e.to_string()
+            } else {
+                String::new()
+            },
+            file: None,
+            status: if e.use_stderr() { EXIT_USAGE } else { EXIT_OK },
+        },
+    }
+}
+
 /// What a command produced: text for the two streams, maybe a file, a status.
 #[derive(Default, Debug)]
 pub struct Outcome {

@@ -89,3 +89,40 @@ fn error_files_give_exactly_their_annotated_diagnostics() {
         }
     });
 }
+
+/// Every source in the repository (examples and all test data, valid or not)
+/// parses without a panic; the examples parse without any diagnostic.
+#[test]
+fn corpus_of_every_source_file_parses() {
+    let root = common::data_dir().join("..");
+    let mut files = Vec::new();
+    for dir in ["examples", "tests"] {
+        let mut stack = vec![root.join(dir)];
+        while let Some(d) = stack.pop() {
+            for e in std::fs::read_dir(&d).unwrap().flatten() {
+                let p = e.path();
+                if p.is_dir() {
+                    stack.push(p);
+                } else if p.extension().is_some_and(|x| x == "st") {
+                    files.push(p);
+                }
+            }
+        }
+    }
+    assert!(files.len() > 100);
+    for f in &files {
+        let parsed = parse(f);
+        if f.starts_with(root.join("examples")) {
+            assert!(
+                parsed.diagnostics.is_empty(),
+                "{}: {}",
+                f.display(),
+                driver::render(
+                    &parsed.diagnostics,
+                    &parsed.sources,
+                    &driver::Options::default()
+                )
+            );
+        }
+    }
+}

@@ -279,15 +279,17 @@ impl Parser<'_> {
     fn at_decl_start(&self) -> bool {
         match self.kind() {
             TokenKind::Kw(Keyword::At) => true,
-            TokenKind::Ident => {
-                matches!(
-                    self.nth_kind(1),
-                    TokenKind::Colon
-                        | TokenKind::Comma
-                        | TokenKind::Dot
-                        | TokenKind::Kw(Keyword::At)
-                ) || self.nth_kind(1) == TokenKind::Ident
-            }
+            // A name followed by a type (`enable BOOL;`) is a declaration
+            // that lacks its colon.
+            TokenKind::Ident => matches!(
+                self.nth_kind(1),
+                TokenKind::Colon
+                    | TokenKind::Comma
+                    | TokenKind::Dot
+                    | TokenKind::Ident
+                    | TokenKind::Elem(_)
+                    | TokenKind::Kw(Keyword::At | Keyword::Array | Keyword::Struct)
+            ),
             k if k.is_reserved_word() => {
                 matches!(self.nth_kind(1), TokenKind::Colon | TokenKind::Comma)
             }
@@ -341,7 +343,14 @@ impl Parser<'_> {
                 return None;
             }
         }
-        if !self.expect(TokenKind::Colon) {
+        if !self.expect(TokenKind::Colon)
+            && !matches!(
+                self.kind(),
+                TokenKind::Ident
+                    | TokenKind::Elem(_)
+                    | TokenKind::Kw(Keyword::Array | Keyword::Struct)
+            )
+        {
             self.skip_decl();
             return None;
         }

@@ -159,6 +159,37 @@ pub(crate) struct Parser<'a> {
     open: Vec<Open>,
 }
 
+/// Reserved words that open or close a section, which are never taken for a
+/// misused name: reading them as names would derail the parse.
+fn starts_construct(k: TokenKind) -> bool {
+    is_item_start(k)
+        || is_item_end(k)
+        || is_var_block_start(k)
+        || matches!(k, TokenKind::Kw(kw) if kw.name().starts_with("END_"))
+        || matches!(
+            k,
+            TokenKind::Kw(
+                Keyword::Then
+                    | Keyword::Do
+                    | Keyword::Of
+                    | Keyword::To
+                    | Keyword::By
+                    | Keyword::Else
+                    | Keyword::Elsif
+                    | Keyword::Until
+                    | Keyword::Struct
+                    | Keyword::Array
+                    | Keyword::Resource
+                    | Keyword::Task
+                    | Keyword::Constant
+                    | Keyword::Retain
+                    | Keyword::NonRetain
+                    | Keyword::At
+                    | Keyword::With
+            )
+        )
+}
+
 /// Keywords that begin a top-level declaration.
 fn is_item_start(k: TokenKind) -> bool {
     matches!(
@@ -270,10 +301,10 @@ impl<'a> Parser<'a> {
         t.kind == TokenKind::Ident && self.text_of(t).eq_ignore_ascii_case(word)
     }
 
-    /// Whether two tokens are on different lines.
+    /// Whether a line break separates the start of `a` from the start of `b`.
     fn newline_between(&self, a: Token, b: Token) -> bool {
-        let lo = (a.hi - self.base) as usize;
-        let hi = (b.lo - self.base) as usize;
+        let lo = (a.lo.min(b.lo) - self.base) as usize;
+        let hi = (a.lo.max(b.lo) - self.base) as usize;
         self.text.as_bytes()[lo..hi].contains(&b'\n')
     }
 
@@ -286,7 +317,7 @@ impl<'a> Parser<'a> {
     /// Reports at the current token unless an error was already reported
     /// there.
     fn report(&mut self, d: Diagnostic) {
-        if self.last_error_pos == self.pos {
+        if self.last_error_pos == self.pos || self.aborted {
             return;
         }
         self.last_error_pos = self.pos;
@@ -295,7 +326,9 @@ impl<'a> Parser<'a> {
 
     /// Reports wherever `d` points, without the one-per-token rule.
     fn report_always(&mut self, d: Diagnostic) {
-        self.diags.push(d);
+        if !self.aborted {
+            self.diags.push(d);
+        }
     }
 
     fn describe_current(&self) -> String {
@@ -391,7 +424,9 @@ impl<'a> Parser<'a> {
                 self.bump();
                 Some(self.intern_token(t))
             }
-            k if k.is_reserved_word() && self.reserved_name_plausible() => {
+            k if k.is_reserved_word()
+                && (self.reserved_name_plausible() || !starts_construct(k)) =>
+            {
                 let d = Diagnostic::new(
                     Code::E0022,
                     t.span(),
@@ -417,7 +452,11 @@ impl<'a> Parser<'a> {
     fn reserved_name_plausible(&self) -> bool {
         matches!(
             self.nth_kind(1),
-            TokenKind::Colon | TokenKind::Comma | TokenKind::Assign | TokenKind::Semi
+            TokenKind::Colon
+                | TokenKind::Comma
+                | TokenKind::Assign
+                | TokenKind::Semi
+                | TokenKind::RParen
         ) || matches!(self.nth(1).kind, TokenKind::Kw(Keyword::At))
     }
 

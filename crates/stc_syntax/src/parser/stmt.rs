@@ -86,10 +86,23 @@ impl Parser<'_> {
     }
 
     fn expect_semi(&mut self) {
-        if !self.eat(TokenKind::Semi) {
-            self.expected("`;`");
-            self.skip_stmt();
+        if self.eat(TokenKind::Semi) {
+            return;
         }
+        if self.newline_between(self.prev(), self.tok()) {
+            let prev = self.prev().span().shrink_to_hi();
+            let d = Diagnostic::new(
+                Code::E0020,
+                self.tok().span(),
+                format!("expected `;`, found {}", self.describe_current()),
+            )
+            .with_label("expected `;`")
+            .with_secondary(prev, "the statement before needs a `;` here");
+            self.report(d);
+        } else {
+            self.expected("`;`");
+        }
+        self.skip_stmt();
     }
 
     fn statement(&mut self) -> Option<Stmt> {
@@ -276,6 +289,11 @@ impl Parser<'_> {
             if self.belongs_to_outer(k) || self.aborted {
                 return;
             }
+            if code == Code::E0021 {
+                // The wrong END keyword, meant for this block: it closes it.
+                self.bump();
+                return;
+            }
             self.bump();
             if self.at(TokenKind::Semi) {
                 self.bump();
@@ -319,9 +337,15 @@ impl Parser<'_> {
                 branches.push(CondBranch { cond, body });
             } else if self.eat_kw(Keyword::Else) {
                 let mut body = self.stmt_list(false);
-                if self.at_kw(Keyword::Elsif) || self.at_kw(Keyword::Else) {
+                // ELSIF or a second ELSE after ELSE: reported, then parsed
+                // as if it were allowed, so its statements are still checked.
+                while self.at_kw(Keyword::Elsif) || self.at_kw(Keyword::Else) {
                     self.expected("`END_IF`");
-                    self.bump();
+                    if self.bump().kind == TokenKind::Kw(Keyword::Elsif) {
+                        let cond = self.expr();
+                        self.then_kw();
+                        let _ = cond;
+                    }
                     body.extend(self.stmt_list(false));
                 }
                 self.close_block(Keyword::EndIf, opener, "IF", &mut body);
@@ -370,6 +394,9 @@ impl Parser<'_> {
         self.open.push(Open::Case);
         let selector = self.expr();
         self.expect_kw(Keyword::Of);
+        if self.at_kw(Keyword::EndCase) || self.at_kw(Keyword::Else) {
+            self.expected("a CASE label");
+        }
         let mut arms = Vec::new();
         while !self.aborted && !ends_stmt_list(self.kind()) {
             let before = self.pos;
@@ -487,7 +514,11 @@ impl Parser<'_> {
         let opener = self.bump().span();
         self.open.push(Open::For);
         let var = self.name("the control variable");
-        if !self.expect(TokenKind::Assign) {
+        if self.at(TokenKind::Eq) {
+            // `FOR i = 1`: reported, then read as `:=`.
+            self.expected("`:=`");
+            self.bump();
+        } else if !self.expect(TokenKind::Assign) {
             // Recover at DO if it is on this statement.
             while !ends_stmt_list(self.kind())
                 && !self.at_kw(Keyword::Do)

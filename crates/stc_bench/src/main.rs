@@ -1,0 +1,123 @@
+//! `stc-bench`: times the phases of stc on generated projects and prints
+//! lines per second, MB per second and memory per source byte.
+//!
+//! Usage: `cargo run --release -p stc_bench -- [LINES...]` (default 100000).
+//! Memory is measured by a counting allocator: the peak of live heap bytes
+//! while a phase runs, divided by the source size.
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::{Duration, Instant};
+
+struct Counting;
+
+static LIVE: AtomicUsize = AtomicUsize::new(0);
+static PEAK: AtomicUsize = AtomicUsize::new(0);
+
+// SAFETY: every call is forwarded unchanged to the system allocator; the
+// counters are only statistics.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        let live = LIVE.fetch_add(layout.size(), Ordering::Relaxed) + layout.size();
+        PEAK.fetch_max(live, Ordering::Relaxed);
+        // SAFETY: same layout, as the caller guarantees for `alloc`.
+        unsafe { System.alloc(layout) }
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        LIVE.fetch_sub(layout.size(), Ordering::Relaxed);
+        // SAFETY: `ptr` was allocated by `alloc` above with this layout.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        if new_size > layout.size() {
+            let live = LIVE.fetch_add(new_size - layout.size(), Ordering::Relaxed) + new_size
+                - layout.size();
+            PEAK.fetch_max(live, Ordering::Relaxed);
+        } else {
+            LIVE.fetch_sub(layout.size() - new_size, Ordering::Relaxed);
+        }
+        // SAFETY: forwarded with the caller's guarantees for `realloc`.
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static ALLOC: Counting = Counting;
+
+/// Runs `f` repeatedly for at least `budget` and returns the best time and
+/// the peak heap growth of one run.
+fn measure<T>(budget: Duration, mut f: impl FnMut() -> T) -> (Duration, usize) {
+    let mut best = Duration::MAX;
+    let mut peak = 0;
+    let start = Instant::now();
+    let mut runs = 0;
+    while runs < 3 || start.elapsed() < budget {
+        let base = LIVE.load(Ordering::Relaxed);
+        PEAK.store(base, Ordering::Relaxed);
+        let t = Instant::now();
+        let r = f();
+        let dt = t.elapsed();
+        peak = peak.max(PEAK.load(Ordering::Relaxed) - base);
+        drop(r);
+        best = best.min(dt);
+        runs += 1;
+    }
+    (best, peak)
+}
+
+fn report(phase: &str, lines: usize, bytes: usize, time: Duration, peak: usize) {
+    let secs = time.as_secs_f64();
+    println!(
+        "{phase:<14} {lines:>9} lines {:>8.2} MB {:>9.2} ms {:>10.0} lines/s {:>8.1} MB/s {:>6.1} B/src-byte",
+        bytes as f64 / 1e6,
+        secs * 1e3,
+        lines as f64 / secs,
+        bytes as f64 / 1e6 / secs,
+        peak as f64 / bytes as f64
+    );
+}
+
+fn main() {
+    let sizes: Vec<usize> = std::env::args()
+        .skip(1)
+        .filter_map(|a| a.replace('_', "").parse().ok())
+        .collect();
+    let sizes = if sizes.is_empty() {
+        vec![100_000]
+    } else {
+        sizes
+    };
+    for lines in sizes {
+        let src = generate_checked(lines);
+        let n = src.lines().count();
+        let bytes = src.len();
+        let (t, peak) = measure(Duration::from_secs(2), || stc_syntax::lexer::lex(&src, 0));
+        report("lex", n, bytes, t, peak);
+        let (t, peak) = measure(Duration::from_secs(2), || {
+            let mut sm = stc_diagnostics::SourceMap::new();
+            sm.add("gen.st", src.clone());
+            let mut interner = stc_syntax::Interner::new();
+            let r = stc_syntax::parse_project(&sm, &mut interner);
+            (sm, interner, r)
+        });
+        // The copy of the text into the source map is part of the run but
+        // not of the parser's memory.
+        report("lex+parse", n, bytes, t, peak.saturating_sub(bytes));
+    }
+}
+
+fn generate_checked(lines: usize) -> String {
+    let src = stc_bench::generate(lines);
+    let mut sm = stc_diagnostics::SourceMap::new();
+    sm.add("gen.st", src.clone());
+    let mut interner = stc_syntax::Interner::new();
+    let (_, diags) = stc_syntax::parse_project(&sm, &mut interner);
+    assert!(
+        diags.is_empty(),
+        "the generated project has diagnostics: {:?}",
+        diags.first()
+    );
+    src
+}

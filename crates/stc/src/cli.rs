@@ -184,8 +184,16 @@ fn run(cli: Cli) -> Outcome {
         Command::Explain { code } => explain(&code),
         Command::Check { common, files } => {
             let opts = common.options();
-            match load_and_parse(&files) {
-                Ok(parsed) => finish(&parsed, &opts, String::new()),
+            match sources::load(&files) {
+                Ok((sm, diags)) => {
+                    let a = driver::analyse(sm, diags, &opts);
+                    finish_with(
+                        &a.all_diagnostics(),
+                        &a.parsed.sources,
+                        &opts,
+                        String::new(),
+                    )
+                }
                 Err(e) => usage_error(e),
             }
         }
@@ -228,11 +236,20 @@ fn load_and_parse(files: &[PathBuf]) -> Result<driver::Parsed, sources::LoadErro
 
 /// Renders the diagnostics and picks the exit status.
 fn finish(parsed: &driver::Parsed, opts: &Options, stdout: String) -> Outcome {
+    finish_with(&parsed.diagnostics, &parsed.sources, opts, stdout)
+}
+
+fn finish_with(
+    diags: &[stc_diagnostics::Diagnostic],
+    sm: &stc_diagnostics::SourceMap,
+    opts: &Options,
+    stdout: String,
+) -> Outcome {
     Outcome {
         stdout,
-        stderr: driver::render(&parsed.diagnostics, &parsed.sources, opts),
+        stderr: driver::render(diags, sm, opts),
         file: None,
-        status: if driver::failed(&parsed.diagnostics, opts) {
+        status: if driver::failed(diags, opts) {
             EXIT_ERRORS
         } else {
             EXIT_OK

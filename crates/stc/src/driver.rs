@@ -1,7 +1,7 @@
 //! The phases, run in order over one project, and the rendering of their
 //! diagnostics.
 
-use stc_diagnostics::{render_human, render_json, Diagnostic, SourceMap};
+use stc_diagnostics::{render_human, render_json, Diagnostic, SourceMap, Span};
 use stc_syntax::ast::Ast;
 use stc_syntax::Interner;
 
@@ -27,6 +27,50 @@ pub struct Parsed {
     pub interner: Interner,
     pub ast: Ast,
     pub diagnostics: Vec<Diagnostic>,
+}
+
+/// A parsed and analysed project.
+pub struct Analysed {
+    pub parsed: Parsed,
+    pub analysis: stc_sema::Analysis,
+    /// Where the standard library prelude sits in the source map.
+    pub prelude: Span,
+}
+
+impl Analysed {
+    /// Every diagnostic: the parser's and the analyser's.
+    pub fn diagnostics(&self) -> impl Iterator<Item = &Diagnostic> {
+        self.parsed
+            .diagnostics
+            .iter()
+            .chain(self.analysis.diagnostics.iter())
+    }
+
+    pub fn all_diagnostics(&self) -> Vec<Diagnostic> {
+        self.diagnostics().cloned().collect()
+    }
+}
+
+/// Parses the project with the standard library prelude appended, then
+/// analyses it.
+pub fn analyse(mut sources: SourceMap, diagnostics: Vec<Diagnostic>, opts: &Options) -> Analysed {
+    let prelude_id = sources
+        .add(stc_sema::prelude::PRELUDE_NAME, stc_sema::prelude::source())
+        .expect("the prelude fits in the position space");
+    let prelude = sources.file(prelude_id).span();
+    let mut parsed = parse(sources, diagnostics);
+    let analysis = stc_sema::analyze(
+        &parsed.ast,
+        &mut parsed.interner,
+        &parsed.sources,
+        Some(prelude),
+        stc_sema::Options { iec2: opts.iec2 },
+    );
+    Analysed {
+        parsed,
+        analysis,
+        prelude,
+    }
 }
 
 /// Parses every file of the source map as one project.

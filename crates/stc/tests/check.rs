@@ -1,0 +1,54 @@
+//! The check conformance suite (docs/testing.md): every case of
+//! `tests/conformance/check` (and every run case and example, which must be
+//! valid) gives exactly its annotated diagnostics, through the same path as
+//! `stc check`.
+
+mod common;
+
+use std::path::Path;
+
+use stc::driver::{self, Options};
+
+/// The options of a case from its `// flags:` lines.
+fn options(case: &Path) -> Options {
+    let mut opts = Options::default();
+    for f in common::case_files(case) {
+        let text = std::fs::read_to_string(&f).unwrap_or_default();
+        for line in text.lines() {
+            if let Some(flags) = line.trim().strip_prefix("// flags:") {
+                let words: Vec<&str> = flags.split_whitespace().collect();
+                for w in words.windows(2) {
+                    if w == ["--std", "iec2"] {
+                        opts.iec2 = true;
+                    }
+                }
+                if words.contains(&"--std=iec2") {
+                    opts.iec2 = true;
+                }
+            }
+        }
+    }
+    opts
+}
+
+fn check_case(case: &Path) -> Result<(), String> {
+    let (sm, diags) = stc::sources::load(&common::case_files(case)).map_err(|e| e.to_string())?;
+    let opts = options(case);
+    let analysed = driver::with_big_stack(move || driver::analyse(sm, diags, &opts));
+    common::compare(&analysed.all_diagnostics(), &analysed.parsed.sources)
+}
+
+#[test]
+fn check_cases_give_exactly_their_annotated_diagnostics() {
+    common::run_all(&common::data_dir().join("conformance/check"), check_case);
+}
+
+#[test]
+fn run_cases_check_cleanly_except_for_their_annotations() {
+    common::run_all(&common::data_dir().join("conformance/run"), check_case);
+}
+
+#[test]
+fn examples_check_without_any_diagnostic() {
+    common::run_all(&common::data_dir().join("../examples"), check_case);
+}

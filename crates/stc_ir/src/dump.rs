@@ -1,0 +1,1 @@
+//! Text dump of the IR (stub, filled in next).

@@ -1,0 +1,1 @@
+//! Memory layout of types (filled in next).

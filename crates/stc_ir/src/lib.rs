@@ -1,0 +1,286 @@
+//! The typed intermediate representation shared by every back end.
+//!
+//! Design: the IR keeps the program *structured* (IF, SWITCH, LOOP with a
+//! latch, BREAK, CONTINUE, RETURN) with *expression trees*, because its three
+//! consumers want different things from it: the C back end prints structured
+//! C almost one-to-one, the netlist back end turns expression trees into
+//! dataflow, and the bytecode compiler linearises trees into three-address
+//! code itself. Everything a back end would otherwise have to re-derive from
+//! the source is decided here, once:
+//!
+//! - every expression is typed, and every implicit conversion is an explicit
+//!   [`ExprKind::Convert`];
+//! - every name is resolved to a [`Place`]: a variable of the current POU, a
+//!   global, a direct address, with projections (member, element, bit);
+//! - constants are folded ([`ExprKind::Const`]);
+//! - FOR is lowered to [`StmtKind::Loop`] with the exact semantics of
+//!   spec/semantics.md (bounds evaluated once, no overflow of the control
+//!   variable, its final value), REPEAT/WHILE likewise, ELSIF to nested IFs,
+//!   CASE to [`StmtKind::Switch`] over integer ranges;
+//! - every run-time check is explicit where it happens: array indices carry
+//!   their bounds, integer division is marked, subrange stores are wrapped in
+//!   [`ExprKind::Check`], FOR's zero step is a [`StmtKind::Fault`];
+//! - R_EDGE/F_EDGE inputs and VAR_TEMP re-initialisation are lowered into
+//!   ordinary statements of the body's prologue;
+//! - standard function blocks are ordinary POUs (from the prelude); standard
+//!   functions are [`Intrinsic`] calls with their resolved types.
+//!
+//! Types are the analyser's [`TypeTable`], so reports can print enumeration
+//! names and struct members; [`layout`] decides the memory layout of every
+//! type for back ends that need bytes (the VM, the process image).
+
+pub mod dump;
+pub mod layout;
+mod lower;
+
+use stc_diagnostics::Span;
+use stc_sema::{GlobalId, PouId, TypeId, TypeTable, VarId};
+use stc_syntax::ast::PouKind;
+use stc_syntax::literal::{AddrSize, DirectAddress};
+use stc_syntax::Symbol;
+use stc_values::{BinOp, Intrinsic, UnOp, Value};
+
+pub use lower::lower;
+
+/// A whole program ready for a back end.
+pub struct Module {
+    pub types: TypeTable,
+    pub pous: Vec<Pou>,
+    pub globals: Vec<Global>,
+    pub configs: Vec<stc_sema::ConfigDef>,
+    /// Names as spelled at their declaration, by symbol.
+    pub names: Vec<String>,
+}
+
+impl Module {
+    pub fn pou(&self, p: PouId) -> &Pou {
+        &self.pous[p.0 as usize]
+    }
+
+    pub fn name(&self, s: Symbol) -> &str {
+        self.names
+            .get(s.0 as usize)
+            .map(|s| s.as_str())
+            .unwrap_or("?")
+    }
+}
+
+pub struct Global {
+    pub name: Symbol,
+    pub ty: TypeId,
+    pub init: Option<stc_sema::InitValue>,
+    pub constant: bool,
+    pub retain: bool,
+    pub location: Option<DirectAddress>,
+    pub span: Span,
+}
+
+/// Where a variable lives.
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
+pub enum Storage {
+    /// In the instance (function blocks and programs: inputs, outputs,
+    /// VAR, hidden edge memories).
+    Instance,
+    /// In the frame of one call (functions: everything; FB/programs:
+    /// VAR_TEMP).
+    Frame,
+    /// A reference (VAR_IN_OUT, VAR_EXTERNAL), stored in the instance or the
+    /// frame as a pointer to the real variable.
+    Ref,
+}
+
+pub struct Var {
+    pub name: Symbol,
+    pub ty: TypeId,
+    pub section: stc_sema::Section,
+    pub storage: Storage,
+    pub init: Option<stc_sema::InitValue>,
+    pub constant: bool,
+    pub retain: bool,
+    pub location: Option<DirectAddress>,
+    /// Variables the compiler added (edge memories); not visible to users.
+    pub hidden: bool,
+    pub span: Span,
+}
+
+pub struct Pou {
+    pub kind: PouKind,
+    pub name: Symbol,
+    pub vars: Vec<Var>,
+    /// The function's result variable.
+    pub result: Option<VarId>,
+    pub body: Vec<Stmt>,
+    pub is_std: bool,
+    pub span: Span,
+    /// The source file the POU comes from (for fault reports).
+    pub file: String,
+}
+
+impl Pou {
+    pub fn var(&self, v: VarId) -> &Var {
+        &self.vars[v.0 as usize]
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct Stmt {
+    pub kind: StmtKind,
+    /// 1-based source line and column, for fault reports.
+    pub line: u32,
+    pub col: u32,
+}
+
+#[derive(Clone, Debug)]
+pub enum StmtKind {
+    Assign {
+        place: Place,
+        value: Expr,
+    },
+    /// A call of a function block instance: inputs are assigned to the
+    /// instance in order, references bound, the body runs, then outputs
+    /// are copied to their targets.
+    CallFb {
+        instance: Place,
+        fb: PouId,
+        inputs: Vec<(VarId, Expr)>,
+        inouts: Vec<(VarId, Place)>,
+        outputs: Vec<Output>,
+    },
+    /// An expression evaluated for its effects (a function call).
+    Eval(Expr),
+    If {
+        cond: Expr,
+        then_body: Vec<Stmt>,
+        else_body: Vec<Stmt>,
+    },
+    /// CASE: the first arm with a range containing the selector runs.
+    Switch {
+        selector: Expr,
+        arms: Vec<SwitchArm>,
+        default: Vec<Stmt>,
+    },
+    /// Runs `body` then `latch` forever; `Continue` runs the latch and starts
+    /// the next iteration, `Break` leaves the loop.
+    Loop {
+        body: Vec<Stmt>,
+        latch: Vec<Stmt>,
+    },
+    Break,
+    Continue,
+    Return,
+    /// A run-time fault, raised when reached.
+    Fault(FaultKind),
+}
+
+/// One arm of a [`StmtKind::Switch`]: inclusive value ranges and a body.
+#[derive(Clone, Debug)]
+pub struct SwitchArm {
+    pub ranges: Vec<(i128, i128)>,
+    pub body: Vec<Stmt>,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
+pub enum FaultKind {
+    DivisionByZero,
+    IndexOutOfBounds,
+    SubrangeViolation,
+    Conversion,
+    MuxRange,
+    ForStepZero,
+    Watchdog,
+}
+
+impl FaultKind {
+    /// The fault's name in `fault: KIND in POU at FILE:LINE:COL`.
+    pub fn text(self) -> &'static str {
+        match self {
+            FaultKind::DivisionByZero => "division by zero",
+            FaultKind::IndexOutOfBounds => "array index out of bounds",
+            FaultKind::SubrangeViolation => "subrange violation",
+            FaultKind::Conversion => "conversion failure",
+            FaultKind::MuxRange => "MUX selector out of range",
+            FaultKind::ForStepZero => "FOR step of zero",
+            FaultKind::Watchdog => "watchdog",
+        }
+    }
+
+    pub fn from_value_fault(f: stc_values::Fault) -> FaultKind {
+        match f {
+            stc_values::Fault::DivisionByZero => FaultKind::DivisionByZero,
+            stc_values::Fault::Conversion => FaultKind::Conversion,
+            stc_values::Fault::MuxRange => FaultKind::MuxRange,
+        }
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct Output {
+    pub var: VarId,
+    pub target: Place,
+    pub negated: bool,
+}
+
+#[derive(Clone, Debug)]
+pub struct Expr {
+    pub kind: ExprKind,
+    pub ty: TypeId,
+}
+
+#[derive(Clone, Debug)]
+pub enum ExprKind {
+    Const(Value),
+    Load(Place),
+    Unary(UnOp, Box<Expr>),
+    /// Operands have one type, except time arithmetic (`TOD + TIME`) and
+    /// `**` (any numeric exponent).
+    Binary(BinOp, Box<Expr>, Box<Expr>),
+    /// A conversion from the operand's type to this expression's type.
+    Convert(Box<Expr>),
+    /// A subrange store: the value must lie in `lo..=hi`.
+    Check {
+        value: Box<Expr>,
+        lo: i128,
+        hi: i128,
+    },
+    CallFn {
+        func: PouId,
+        inputs: Vec<(VarId, Expr)>,
+        inouts: Vec<(VarId, Place)>,
+        outputs: Vec<Output>,
+    },
+    /// A standard function with arguments of the types it was resolved at.
+    Intrinsic {
+        func: Intrinsic,
+        args: Vec<Expr>,
+    },
+    /// The task clock (TIME).
+    CurTime,
+}
+
+#[derive(Clone, Debug)]
+pub struct Place {
+    pub root: Root,
+    pub proj: Vec<Proj>,
+    pub ty: TypeId,
+}
+
+#[derive(Clone, Debug)]
+pub enum Root {
+    /// A variable of the current POU (through its reference for VAR_IN_OUT
+    /// and VAR_EXTERNAL).
+    Var(VarId),
+    Global(GlobalId),
+    Direct(DirectAddress),
+}
+
+#[derive(Clone, Debug)]
+pub enum Proj {
+    /// A member of a struct (by index).
+    Field(u32),
+    /// A variable of a function block or program instance.
+    FbVar(PouId, VarId),
+    /// Array elements: one index per dimension, with the dimension's bounds.
+    Index(Vec<(Expr, i128, i128)>),
+    /// A part of a bit string: bit `index` (size X), byte, word...
+    Part(AddrSize, u32),
+}

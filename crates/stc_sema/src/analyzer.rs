@@ -1,0 +1,278 @@
+//! The analyser's state and the order of its passes.
+//!
+//! 1. `decls::collect` registers every global name (types, POUs,
+//!    configurations) so declarations may appear in any order and file.
+//! 2. Types, POU variables and globals are resolved lazily, on first need,
+//!    with an in-progress mark that turns a cycle into one diagnostic.
+//! 3. POU bodies are checked statement by statement (`stmt`, `expr`,
+//!    `calls`), recording types, resolutions, coercions and constants.
+//! 4. Configurations, externals, recursion and the flow warnings last.
+
+use rustc_hash::{FxHashMap, FxHashSet};
+use stc_diagnostics::{Code, Diagnostic, SourceMap, Span};
+use stc_syntax::ast::{Ast, ExprId, Item, TypeDecl, VarBlock, VarDecl};
+use stc_syntax::{Interner, Symbol};
+use stc_values::Value;
+
+use crate::types::{InitValue, TypeId, TypeTable};
+use crate::{
+    Analysis, CallInfo, ConfigDef, GlobalDef, GlobalId, Options, PouDef, PouId, Res, VarId,
+};
+
+/// Where names are looked up while checking an expression.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub(crate) enum Scope {
+    /// Inside a POU: its variables.
+    Pou(PouId),
+    /// TYPE declarations: global constants only.
+    Global,
+    /// A configuration (and one of its resources): its globals.
+    Config(usize, Option<usize>),
+}
+
+/// A global name.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub(crate) enum GlobalName {
+    Type(usize),
+    Pou(PouId),
+    Config(usize),
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub(crate) enum State {
+    Todo,
+    InProgress,
+    Done,
+}
+
+pub(crate) struct TypeDeclEntry<'a> {
+    pub decl: &'a TypeDecl,
+    pub state: State,
+    pub ty: TypeId,
+    pub init: Option<InitValue>,
+}
+
+/// Where a variable was declared, for lazy resolution.
+#[derive(Clone, Copy)]
+pub(crate) struct VarSource<'a> {
+    pub block: &'a VarBlock,
+    pub decl: &'a VarDecl,
+}
+
+/// Per-body state while statements are checked.
+#[derive(Default)]
+pub(crate) struct Body {
+    pub loop_depth: u32,
+    /// FOR control variables of the loops around the current statement.
+    pub for_vars: Vec<VarId>,
+}
+
+pub(crate) struct Sema<'a> {
+    pub ast: &'a Ast,
+    pub interner: &'a mut Interner,
+    pub sources: &'a SourceMap,
+    pub prelude: Option<Span>,
+    pub opts: Options,
+
+    pub types: TypeTable,
+    pub names: FxHashMap<Symbol, GlobalName>,
+    pub type_decls: Vec<TypeDeclEntry<'a>>,
+    pub pous: Vec<PouDef>,
+    /// Declaration sources of each POU's variables (parallel to `vars`).
+    pub pou_var_src: Vec<Vec<Option<VarSource<'a>>>>,
+    pub pou_var_state: Vec<Vec<State>>,
+    pub pou_state: Vec<State>,
+    pub fb_types: FxHashMap<PouId, TypeId>,
+
+    pub globals: Vec<GlobalDef>,
+    pub global_src: Vec<VarSource<'a>>,
+    pub global_state: Vec<State>,
+    /// Top-level VAR_GLOBAL lists.
+    pub top_globals: Vec<GlobalId>,
+    pub configs: Vec<ConfigDef>,
+
+    pub expr_types: Vec<TypeId>,
+    pub coercions: FxHashMap<ExprId, TypeId>,
+    pub resolutions: FxHashMap<ExprId, Res>,
+    pub consts: FxHashMap<ExprId, Value>,
+    pub calls: FxHashMap<ExprId, CallInfo>,
+    pub diags: Vec<Diagnostic>,
+
+    pub body: Body,
+    /// Variables referenced anywhere (bodies and declarations).
+    pub used: FxHashSet<(PouId, VarId)>,
+    /// Every enumeration value by name: its type, index, and the POU of a
+    /// local anonymous enumeration.
+    pub enum_index: FxHashMap<Symbol, Vec<(TypeId, u32, Option<PouId>)>>,
+    /// Calls between POUs, for the recursion check: (caller, callee, span).
+    pub call_edges: Vec<(PouId, PouId, Span)>,
+    /// The inner index expression of `a[i][j]`, which may index partially.
+    pub partial_index_ok: Option<ExprId>,
+}
+
+impl<'a> Sema<'a> {
+    pub fn new(
+        ast: &'a Ast,
+        interner: &'a mut Interner,
+        sources: &'a SourceMap,
+        prelude: Option<Span>,
+        opts: Options,
+    ) -> Sema<'a> {
+        Sema {
+            ast,
+            interner,
+            sources,
+            prelude,
+            opts,
+            types: TypeTable::new(),
+            names: FxHashMap::default(),
+            type_decls: Vec::new(),
+            pous: Vec::new(),
+            pou_var_src: Vec::new(),
+            pou_var_state: Vec::new(),
+            pou_state: Vec::new(),
+            fb_types: FxHashMap::default(),
+            globals: Vec::new(),
+            global_src: Vec::new(),
+            global_state: Vec::new(),
+            top_globals: Vec::new(),
+            configs: Vec::new(),
+            expr_types: vec![TypeId::ERROR; ast.exprs.len()],
+            coercions: FxHashMap::default(),
+            resolutions: FxHashMap::default(),
+            consts: FxHashMap::default(),
+            calls: FxHashMap::default(),
+            diags: Vec::new(),
+            body: Body::default(),
+            used: FxHashSet::default(),
+            enum_index: FxHashMap::default(),
+            call_edges: Vec::new(),
+            partial_index_ok: None,
+        }
+    }
+
+    pub fn run(mut self) -> Analysis {
+        self.collect();
+        for i in 0..self.type_decls.len() {
+            self.resolve_type_decl(i);
+        }
+        for p in 0..self.pous.len() {
+            self.resolve_pou(PouId(p as u32));
+        }
+        for g in 0..self.globals.len() {
+            self.resolve_global(GlobalId(g as u32));
+        }
+        self.collect_configs();
+        for (i, item) in self.ast.items.iter().enumerate() {
+            if let Item::Pou(p) = item {
+                let id = self.pou_of_item(i);
+                if let Some(id) = id {
+                    self.check_body(id, p);
+                }
+            }
+        }
+        self.check_externals();
+        self.check_recursion();
+        if let Some(prelude) = self.prelude {
+            // The prelude is the standard library: its warnings are not the
+            // user's business (its errors would be a bug, and stay visible).
+            self.diags
+                .retain(|d| d.is_error() || !(prelude.lo <= d.span.lo && d.span.lo < prelude.hi));
+        }
+        Analysis {
+            types: self.types,
+            pous: self.pous,
+            globals: self.globals,
+            configs: self.configs,
+            expr_types: self.expr_types,
+            coercions: self.coercions,
+            resolutions: self.resolutions,
+            consts: self.consts,
+            calls: self.calls,
+            diagnostics: self.diags,
+        }
+    }
+
+    pub fn pou_of_item(&self, item: usize) -> Option<PouId> {
+        self.pous
+            .iter()
+            .position(|p| p.item == item)
+            .map(|i| PouId(i as u32))
+    }
+
+    // ----- diagnostics ----------------------------------------------------
+
+    pub fn emit(&mut self, d: Diagnostic) {
+        self.diags.push(d);
+    }
+
+    pub fn error(&mut self, code: Code, span: Span, msg: impl Into<String>) {
+        self.diags.push(Diagnostic::new(code, span, msg));
+    }
+
+    pub fn in_prelude(&self, span: Span) -> bool {
+        self.prelude
+            .is_some_and(|p| p.lo <= span.lo && span.lo < p.hi)
+    }
+
+    /// A name as the user spelled it at `span` (or its first spelling).
+    pub fn spelled(&self, sym: Symbol, span: Span) -> String {
+        let s = self.sources.slice(span);
+        if !s.is_empty() && s.eq_ignore_ascii_case(self.interner.key(sym)) {
+            s.to_string()
+        } else {
+            self.interner.spelling(sym).to_string()
+        }
+    }
+
+    pub fn sym_name(&self, sym: Symbol) -> String {
+        self.interner.spelling(sym).to_string()
+    }
+
+    pub fn tname(&self, t: TypeId) -> String {
+        self.types.display(t, self.interner)
+    }
+
+    pub fn intern(&mut self, s: &str) -> Symbol {
+        self.interner.intern(s)
+    }
+
+    /// "did you mean `x`?" among candidate names.
+    pub fn did_you_mean<'s>(
+        &self,
+        name: &str,
+        candidates: impl Iterator<Item = &'s str>,
+    ) -> Option<String> {
+        let name_u = name.to_ascii_uppercase();
+        let limit = (name.len() / 3).max(1);
+        let mut best: Option<(usize, &str)> = None;
+        for c in candidates {
+            let d = edit_distance(&name_u, &c.to_ascii_uppercase());
+            if d <= limit && d > 0 && best.is_none_or(|(bd, _)| d < bd) {
+                best = Some((d, c));
+            }
+        }
+        best.map(|(_, c)| c.to_string())
+    }
+
+    pub fn set_type(&mut self, e: ExprId, t: TypeId) {
+        if let Some(slot) = self.expr_types.get_mut(e.index()) {
+            *slot = t;
+        }
+    }
+}
+
+/// Levenshtein distance (names are short).
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut prev: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut cur = vec![i + 1; b.len() + 1];
+        for (j, &cb) in b.iter().enumerate() {
+            let cost = usize::from(ca != cb);
+            cur[j + 1] = (prev[j] + cost).min(prev[j + 1] + 1).min(cur[j] + 1);
+        }
+        prev = cur;
+    }
+    prev[b.len()]
+}

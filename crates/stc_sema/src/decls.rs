@@ -1,0 +1,1016 @@
+//! Declarations: global names, data types, POU variables, globals, initial
+//! values.
+
+use rustc_hash::FxHashMap;
+use stc_diagnostics::{Code, Diagnostic, Span};
+use stc_syntax::ast::{
+    ArrayDim, Edge, Ident, Init, InitKind, Item, PouKind, TypeSpec, TypeSpecKind, VarBlockItems,
+    VarKind,
+};
+use stc_syntax::literal::AddrSize;
+use stc_syntax::token::ElemType;
+use stc_values::Value;
+
+use crate::analyzer::{GlobalName, Scope, Sema, State, TypeDeclEntry, VarSource};
+use crate::types::{EnumValue, Field, InitValue, TypeId, TypeKind};
+use crate::{GlobalDef, GlobalId, GlobalOwner, PouDef, PouId, Section, VarDef, VarId};
+
+fn section_of(kind: VarKind) -> Section {
+    match kind {
+        VarKind::Input => Section::Input,
+        VarKind::Output => Section::Output,
+        VarKind::InOut => Section::InOut,
+        VarKind::External => Section::External,
+        VarKind::Global => Section::Global,
+        VarKind::Temp => Section::Temp,
+        _ => Section::Var,
+    }
+}
+
+impl<'a> Sema<'a> {
+    /// Registers a global name, reporting a duplicate (E0105).
+    fn register(&mut self, name: Ident, what: GlobalName) -> bool {
+        if let Some(prev) = self.names.get(&name.sym).copied() {
+            let prev_span = self.global_name_span(prev);
+            let shown = self.spelled(name.sym, name.span);
+            let mut d = Diagnostic::new(
+                Code::E0105,
+                name.span,
+                format!("`{shown}` is declared twice"),
+            )
+            .with_label("declared again here");
+            if let Some(s) = prev_span {
+                if self.in_prelude(s) {
+                    d = d.with_note(format!("`{shown}` is a standard function block"));
+                } else {
+                    d = d.with_secondary(s, "first declared here");
+                }
+            }
+            self.emit(d);
+            return false;
+        }
+        self.names.insert(name.sym, what);
+        true
+    }
+
+    fn global_name_span(&self, g: GlobalName) -> Option<Span> {
+        Some(match g {
+            GlobalName::Type(i) => self.type_decls[i].decl.name.span,
+            GlobalName::Pou(p) => self.pous[p.0 as usize].name_span,
+            GlobalName::Config(c) => match &self.ast.items[c] {
+                Item::Configuration(c) => c.name.span,
+                _ => return None,
+            },
+        })
+    }
+
+    pub(crate) fn collect(&mut self) {
+        let ast = self.ast;
+        for (i, item) in ast.items.iter().enumerate() {
+            match item {
+                Item::Types(decls, _) => {
+                    for d in decls {
+                        let idx = self.type_decls.len();
+                        if self.register(d.name, GlobalName::Type(idx)) {
+                            self.type_decls.push(TypeDeclEntry {
+                                decl: d,
+                                state: State::Todo,
+                                ty: TypeId::ERROR,
+                                init: None,
+                            });
+                        }
+                    }
+                }
+                Item::Pou(p) => {
+                    let id = PouId(self.pous.len() as u32);
+                    if !self.register(p.name, GlobalName::Pou(id)) {
+                        continue;
+                    }
+                    let mut def = PouDef {
+                        kind: p.kind,
+                        name: p.name.sym,
+                        span: p.span,
+                        name_span: p.name.span,
+                        item: i,
+                        vars: Vec::new(),
+                        return_type: None,
+                        is_std: self.in_prelude(p.span),
+                        var_index: FxHashMap::default(),
+                    };
+                    let mut src = Vec::new();
+                    if p.kind == PouKind::Function && p.return_type.is_some() {
+                        def.vars.push(VarDef {
+                            name: p.name.sym,
+                            span: p.name.span,
+                            section: Section::Result,
+                            ty: TypeId::ERROR,
+                            init: None,
+                            constant: false,
+                            retain: false,
+                            location: None,
+                            edge: None,
+                        });
+                        def.var_index.insert(p.name.sym, VarId(0));
+                        src.push(None);
+                    }
+                    for block in &p.var_blocks {
+                        let VarBlockItems::Vars(decls) = &block.items else {
+                            continue;
+                        };
+                        for decl in decls {
+                            for name in &decl.names {
+                                let v = VarId(def.vars.len() as u32);
+                                if let Some(prev) = def.var_index.get(&name.sym) {
+                                    let first = def.vars[prev.0 as usize].span;
+                                    let shown = self.spelled(name.sym, name.span);
+                                    let d = Diagnostic::new(
+                                        Code::E0105,
+                                        name.span,
+                                        format!(
+                                            "`{shown}` is declared twice in `{}`",
+                                            self.sym_name(p.name.sym)
+                                        ),
+                                    )
+                                    .with_label("declared again here")
+                                    .with_secondary(first, "first declared here");
+                                    self.emit(d);
+                                    continue;
+                                }
+                                def.var_index.insert(name.sym, v);
+                                def.vars.push(VarDef {
+                                    name: name.sym,
+                                    span: name.span,
+                                    section: section_of(block.kind),
+                                    ty: TypeId::ERROR,
+                                    init: None,
+                                    constant: block.constant,
+                                    retain: block.retention
+                                        == Some(stc_syntax::ast::Retention::Retain),
+                                    location: decl.location.as_ref().map(|l| l.address.clone()),
+                                    edge: decl.edge,
+                                });
+                                src.push(Some(VarSource { block, decl }));
+                            }
+                        }
+                    }
+                    let n = def.vars.len();
+                    self.pous.push(def);
+                    self.pou_var_src.push(src);
+                    self.pou_var_state.push(vec![State::Todo; n]);
+                    self.pou_state.push(State::Todo);
+                }
+                Item::Configuration(c) => {
+                    self.register(c.name, GlobalName::Config(i));
+                }
+                Item::GlobalVars(block) => {
+                    let ids = self.add_globals(block, GlobalOwner::TopLevel);
+                    self.top_globals.extend(ids);
+                }
+            }
+        }
+    }
+
+    /// Adds the variables of a VAR_GLOBAL block (resolved later).
+    pub(crate) fn add_globals(
+        &mut self,
+        block: &'a stc_syntax::ast::VarBlock,
+        owner: GlobalOwner,
+    ) -> Vec<GlobalId> {
+        let mut ids = Vec::new();
+        let VarBlockItems::Vars(decls) = &block.items else {
+            return ids;
+        };
+        for decl in decls {
+            let mut names: Vec<(stc_syntax::Symbol, Span)> =
+                decl.names.iter().map(|n| (n.sym, n.span)).collect();
+            if names.is_empty() {
+                // An unnamed located global (`AT %IX0.0 : BOOL;`).
+                if let Some(l) = &decl.location {
+                    let sym = self.intern(&l.address.to_string());
+                    names.push((sym, l.span));
+                }
+            }
+            for (sym, span) in names {
+                let id = GlobalId(self.globals.len() as u32);
+                self.globals.push(GlobalDef {
+                    var: VarDef {
+                        name: sym,
+                        span,
+                        section: Section::Global,
+                        ty: TypeId::ERROR,
+                        init: None,
+                        constant: block.constant,
+                        retain: block.retention == Some(stc_syntax::ast::Retention::Retain),
+                        location: decl.location.as_ref().map(|l| l.address.clone()),
+                        edge: None,
+                    },
+                    owner,
+                });
+                self.global_src.push(VarSource { block, decl });
+                self.global_state.push(State::Todo);
+                ids.push(id);
+            }
+        }
+        ids
+    }
+
+    // ----- data types -------------------------------------------------------
+
+    pub(crate) fn resolve_type_decl(&mut self, i: usize) -> (TypeId, Option<InitValue>) {
+        match self.type_decls[i].state {
+            State::Done => return (self.type_decls[i].ty, self.type_decls[i].init.clone()),
+            State::InProgress => {
+                let d = self.type_decls[i].decl;
+                let name = self.spelled(d.name.sym, d.name.span);
+                self.error(
+                    Code::E0102,
+                    d.name.span,
+                    format!("type `{name}` is defined in terms of itself"),
+                );
+                return (TypeId::ERROR, None);
+            }
+            State::Todo => {}
+        }
+        self.type_decls[i].state = State::InProgress;
+        let decl = self.type_decls[i].decl;
+        let (ty, mut init) = self.resolve_type_spec(&decl.spec, Scope::Global, Some(decl.name.sym));
+        if let Some(i) = &decl.init {
+            init = self.init_value(i, ty, Scope::Global);
+        }
+        let e = &mut self.type_decls[i];
+        e.state = State::Done;
+        e.ty = ty;
+        e.init = init.clone();
+        (ty, init)
+    }
+
+    /// The type of an FB or program used as a data type.
+    pub(crate) fn pou_type(&mut self, p: PouId) -> TypeId {
+        if let Some(&t) = self.fb_types.get(&p) {
+            return t;
+        }
+        let pou = &self.pous[p.0 as usize];
+        let kind = match pou.kind {
+            PouKind::Program => TypeKind::Program(p),
+            _ => TypeKind::Fb(p),
+        };
+        let t = self.types.add(kind, Some(pou.name), Some(pou.name_span));
+        self.fb_types.insert(p, t);
+        t
+    }
+
+    /// A constant integer from an expression (array bounds, lengths...).
+    pub(crate) fn const_int(
+        &mut self,
+        e: stc_syntax::ast::ExprId,
+        scope: Scope,
+        what: &str,
+    ) -> Option<i128> {
+        let t = self.check_expr(e, None, scope);
+        if t == TypeId::ERROR {
+            return None;
+        }
+        match self.consts.get(&e) {
+            Some(Value::Int(v)) if self.types.is_integer(t) => Some(*v),
+            Some(_) | None => {
+                let span = self.ast.expr(e).span;
+                let msg = if self.consts.contains_key(&e) {
+                    format!("{what} must be an integer constant")
+                } else {
+                    format!("{what} must be a constant expression")
+                };
+                self.error(Code::E0705, span, msg);
+                None
+            }
+        }
+    }
+
+    /// Resolves a type written in a declaration; `name` names the new type
+    /// when the spec is the body of a TYPE declaration.
+    pub(crate) fn resolve_type_spec(
+        &mut self,
+        spec: &TypeSpec,
+        scope: Scope,
+        name: Option<stc_syntax::Symbol>,
+    ) -> (TypeId, Option<InitValue>) {
+        let span = Some(spec.span);
+        match &spec.kind {
+            TypeSpecKind::Error => (TypeId::ERROR, None),
+            TypeSpecKind::Elementary(e) => (self.types.elem(*e), None),
+            TypeSpecKind::Generic(g) => {
+                self.error(
+                    Code::E0102,
+                    spec.span,
+                    format!(
+                        "the generic type `{}` can only be used by standard functions",
+                        g.name()
+                    ),
+                );
+                (TypeId::ERROR, None)
+            }
+            TypeSpecKind::Named(id) => self.named_type(*id),
+            TypeSpecKind::String { wide, len } => {
+                let n = match len {
+                    Some(e) => match self.const_int(*e, scope, "a string length") {
+                        Some(n) if (1..=65_535).contains(&n) => n as u32,
+                        Some(n) => {
+                            let s = self.ast.expr(*e).span;
+                            self.error(
+                                Code::E0705,
+                                s,
+                                format!("a string length must be 1..65535, not {n}"),
+                            );
+                            crate::types::DEFAULT_STRING_LEN
+                        }
+                        None => crate::types::DEFAULT_STRING_LEN,
+                    },
+                    None => crate::types::DEFAULT_STRING_LEN,
+                };
+                (self.types.string(*wide, n), None)
+            }
+            TypeSpecKind::Subrange { base, lo, hi } => {
+                let (bt, _) = self.resolve_type_spec(base, scope, None);
+                let Some(b) = self
+                    .types
+                    .numeric(bt)
+                    .filter(|b| stc_values::is_integer(*b))
+                else {
+                    if bt != TypeId::ERROR {
+                        self.error(
+                            Code::E0705,
+                            base.span,
+                            "a subrange needs an integer base type",
+                        );
+                    }
+                    return (TypeId::ERROR, None);
+                };
+                let l = self.const_int(*lo, scope, "a subrange limit");
+                let h = self.const_int(*hi, scope, "a subrange limit");
+                let (Some(l), Some(h)) = (l, h) else {
+                    return (TypeId::ERROR, None);
+                };
+                let (min, max) = stc_values::int_range(b).unwrap_or((i128::MIN, i128::MAX));
+                if l > h || l < min || h > max {
+                    let s = self.ast.expr(*lo).span.to(self.ast.expr(*hi).span);
+                    self.error(
+                        Code::E0705,
+                        s,
+                        format!("invalid subrange {l}..{h} of {}", b.name()),
+                    );
+                    return (TypeId::ERROR, None);
+                }
+                let t = self.types.add(
+                    TypeKind::Subrange {
+                        base: b,
+                        lo: l,
+                        hi: h,
+                    },
+                    name,
+                    span,
+                );
+                (t, Some(InitValue::Scalar(Value::Int(l))))
+            }
+            TypeSpecKind::Enum { values, base } => {
+                let mut base_ty = ElemType::Int;
+                if let Some(b) = base {
+                    let (bt, _) = self.resolve_type_spec(b, scope, None);
+                    match self.types.numeric(bt) {
+                        Some(e)
+                            if stc_values::is_integer(e)
+                                || (stc_values::is_bit_string(e) && e != ElemType::Bool) =>
+                        {
+                            base_ty = e
+                        }
+                        _ if bt == TypeId::ERROR => {}
+                        _ => self.error(
+                            Code::E0705,
+                            b.span,
+                            "an enumeration's base type must be an integer or bit-string type",
+                        ),
+                    }
+                }
+                let mut out: Vec<EnumValue> = Vec::new();
+                let mut next: i128 = 0;
+                for m in values {
+                    if let Some(prev) = out.iter().find(|v| v.name == m.name.sym) {
+                        let shown = self.spelled(m.name.sym, m.name.span);
+                        let d = Diagnostic::new(
+                            Code::E0105,
+                            m.name.span,
+                            format!("enumeration value `{shown}` is declared twice"),
+                        )
+                        .with_secondary(prev.span, "first declared here");
+                        self.emit(d);
+                        continue;
+                    }
+                    let value = match m.value {
+                        Some(e) => self
+                            .const_int(e, scope, "an enumeration value")
+                            .unwrap_or(next),
+                        None => next,
+                    };
+                    next = value + 1;
+                    out.push(EnumValue {
+                        name: m.name.sym,
+                        value,
+                        span: m.name.span,
+                    });
+                }
+                if base.is_none()
+                    && out
+                        .iter()
+                        .any(|v| !(i16::MIN as i128..=i16::MAX as i128).contains(&v.value))
+                {
+                    base_ty = ElemType::Dint;
+                }
+                let first = out.first().map(|v| v.value).unwrap_or(0);
+                let owner = match (name, scope) {
+                    (None, Scope::Pou(p)) => Some(p),
+                    _ => None,
+                };
+                let members: Vec<(stc_syntax::Symbol, Span)> =
+                    out.iter().map(|v| (v.name, v.span)).collect();
+                let t = self.types.add(
+                    TypeKind::Enum {
+                        values: out,
+                        base: base_ty,
+                    },
+                    name,
+                    span,
+                );
+                for (i, (sym, vspan)) in members.into_iter().enumerate() {
+                    let entry = self.enum_index.entry(sym).or_default();
+                    let hides = owner.is_some() && entry.iter().any(|(_, _, o)| o.is_none());
+                    entry.push((t, i as u32, owner));
+                    if hides {
+                        let shown = self.spelled(sym, vspan);
+                        self.emit(
+                            Diagnostic::new(Code::W0102, vspan, format!("the local enumeration value `{shown}` hides a global one"))
+                                .with_note("inside this POU the unqualified name means the local value; other tools may report it as ambiguous"),
+                        );
+                    }
+                }
+                (t, Some(InitValue::Scalar(Value::Int(first))))
+            }
+            TypeSpecKind::Array { dims, elem } => {
+                let mut out = Vec::new();
+                let mut ok = true;
+                for d in dims {
+                    match d {
+                        ArrayDim::Range { lo, hi } => {
+                            let l = self.const_int(*lo, scope, "an array bound");
+                            let h = self.const_int(*hi, scope, "an array bound");
+                            match (l, h) {
+                                (Some(l), Some(h)) if l <= h => out.push((l, h)),
+                                (Some(l), Some(h)) => {
+                                    let s = self.ast.expr(*lo).span.to(self.ast.expr(*hi).span);
+                                    self.error(
+                                        Code::E0705,
+                                        s,
+                                        format!("array bounds {l}..{h} are inverted"),
+                                    );
+                                    ok = false;
+                                }
+                                _ => ok = false,
+                            }
+                        }
+                        ArrayDim::Star(s) => {
+                            self.error(
+                                Code::E0030,
+                                *s,
+                                "arrays of variable length (`*`) are not supported yet",
+                            );
+                            ok = false;
+                        }
+                    }
+                }
+                let (et, _) = self.resolve_type_spec(elem, scope, None);
+                if !ok || et == TypeId::ERROR {
+                    return (TypeId::ERROR, None);
+                }
+                let count: i128 = out.iter().map(|(l, h)| h - l + 1).product();
+                if count > 16 << 20 {
+                    self.error(
+                        Code::E0705,
+                        spec.span,
+                        format!("an array of {count} elements is too large"),
+                    );
+                    return (TypeId::ERROR, None);
+                }
+                (
+                    self.types.add(
+                        TypeKind::Array {
+                            dims: out,
+                            elem: et,
+                        },
+                        name,
+                        span,
+                    ),
+                    None,
+                )
+            }
+            TypeSpecKind::Struct { members } => {
+                let mut fields: Vec<Field> = Vec::new();
+                for m in members {
+                    let (ft, tinit) = self.resolve_type_spec(&m.ty, scope, None);
+                    let init = match &m.init {
+                        Some(i) => self.init_value(i, ft, scope),
+                        None => tinit,
+                    };
+                    for n in &m.names {
+                        if let Some(prev) = fields.iter().find(|f| f.name == n.sym) {
+                            let shown = self.spelled(n.sym, n.span);
+                            let d = Diagnostic::new(
+                                Code::E0105,
+                                n.span,
+                                format!("member `{shown}` is declared twice"),
+                            )
+                            .with_secondary(prev.span, "first declared here");
+                            self.emit(d);
+                            continue;
+                        }
+                        fields.push(Field {
+                            name: n.sym,
+                            ty: ft,
+                            init: init.clone(),
+                            span: n.span,
+                        });
+                    }
+                }
+                (
+                    self.types.add(TypeKind::Struct { fields }, name, span),
+                    None,
+                )
+            }
+        }
+    }
+
+    fn named_type(&mut self, id: Ident) -> (TypeId, Option<InitValue>) {
+        match self.names.get(&id.sym).copied() {
+            Some(GlobalName::Type(i)) => self.resolve_type_decl(i),
+            Some(GlobalName::Pou(p)) => match self.pous[p.0 as usize].kind {
+                PouKind::Function => {
+                    let shown = self.spelled(id.sym, id.span);
+                    self.error(
+                        Code::E0102,
+                        id.span,
+                        format!("`{shown}` is a function, not a type"),
+                    );
+                    (TypeId::ERROR, None)
+                }
+                _ => (self.pou_type(p), None),
+            },
+            _ => {
+                let shown = self.spelled(id.sym, id.span);
+                let mut d =
+                    Diagnostic::new(Code::E0102, id.span, format!("unknown type `{shown}`"))
+                        .with_label("not a declared type");
+                let candidates: Vec<String> = self
+                    .names
+                    .iter()
+                    .filter(|(_, g)| !matches!(g, GlobalName::Config(_)))
+                    .map(|(s, _)| self.sym_name(*s))
+                    .chain(ElemType::ALL.iter().map(|e| e.name().to_string()))
+                    .collect();
+                if let Some(s) = self.did_you_mean(&shown, candidates.iter().map(|s| s.as_str())) {
+                    d = d.with_help(format!("did you mean `{s}`?"));
+                }
+                self.emit(d);
+                (TypeId::ERROR, None)
+            }
+        }
+    }
+
+    // ----- initial values ---------------------------------------------------
+
+    /// Evaluates an initial value for a variable of type `ty`.
+    pub(crate) fn init_value(
+        &mut self,
+        init: &Init,
+        ty: TypeId,
+        scope: Scope,
+    ) -> Option<InitValue> {
+        if ty == TypeId::ERROR {
+            // Still check the expressions, for their own errors.
+            if let InitKind::Expr(e) = &init.kind {
+                self.check_expr(*e, None, scope);
+            }
+            return None;
+        }
+        match &init.kind {
+            InitKind::Expr(e) => {
+                if matches!(
+                    self.types.kind(ty),
+                    TypeKind::Array { .. }
+                        | TypeKind::Struct { .. }
+                        | TypeKind::Fb(_)
+                        | TypeKind::Program(_)
+                ) {
+                    let t = self.check_expr(*e, None, scope);
+                    if t != TypeId::ERROR {
+                        let msg = format!(
+                            "a value of type {} cannot initialise a variable of type {}",
+                            self.tname(t),
+                            self.tname(ty)
+                        );
+                        self.error(Code::E0208, init.span, msg);
+                    }
+                    return None;
+                }
+                let vt = self.check_expr(*e, Some(ty), scope);
+                if vt == TypeId::ERROR || !self.coerce_init(*e, vt, ty) {
+                    return None;
+                }
+                match self.consts.get(e).cloned() {
+                    Some(v) => {
+                        let v = self.convert_const(&v, vt, ty);
+                        self.check_subrange(&v, ty, self.ast.expr(*e).span);
+                        v.map(InitValue::Scalar)
+                    }
+                    None => {
+                        self.error(
+                            Code::E0208,
+                            init.span,
+                            "an initial value must be a constant expression",
+                        );
+                        None
+                    }
+                }
+            }
+            InitKind::Array(elems) => {
+                let TypeKind::Array { dims, elem } = self.types.kind(ty).clone() else {
+                    let msg = format!(
+                        "an array initialiser cannot initialise a variable of type {}",
+                        self.tname(ty)
+                    );
+                    self.error(Code::E0208, init.span, msg);
+                    return None;
+                };
+                let total: i128 = dims.iter().map(|(l, h)| h - l + 1).product();
+                let mut out: Vec<Option<InitValue>> = Vec::new();
+                let mut reported = false;
+                for el in elems {
+                    let count = match el.repeat {
+                        Some(r) => self
+                            .const_int(r, scope, "a repetition count")
+                            .unwrap_or(0)
+                            .max(0),
+                        None => 1,
+                    };
+                    let values: Vec<Option<InitValue>> = if el.values.is_empty() {
+                        vec![None]
+                    } else {
+                        el.values
+                            .iter()
+                            .map(|v| self.init_value(v, elem, scope))
+                            .collect()
+                    };
+                    for _ in 0..count {
+                        for v in &values {
+                            if (out.len() as i128) < total {
+                                out.push(v.clone());
+                            } else if !reported {
+                                reported = true;
+                                self.error(
+                                    Code::E0208,
+                                    el.span,
+                                    format!(
+                                        "too many initial values: the array has {total} elements"
+                                    ),
+                                );
+                            }
+                        }
+                    }
+                }
+                Some(InitValue::Array(out))
+            }
+            InitKind::Struct(elems) => {
+                let members: Vec<(stc_syntax::Symbol, TypeId)> = match self.types.kind(ty).clone() {
+                    TypeKind::Struct { fields } => fields.iter().map(|f| (f.name, f.ty)).collect(),
+                    TypeKind::Fb(p) => {
+                        self.resolve_pou(p);
+                        self.pous[p.0 as usize]
+                            .vars
+                            .iter()
+                            .filter(|v| {
+                                matches!(v.section, Section::Input | Section::Output | Section::Var)
+                            })
+                            .map(|v| (v.name, v.ty))
+                            .collect()
+                    }
+                    _ => {
+                        let msg = format!(
+                            "a structure initialiser cannot initialise a variable of type {}",
+                            self.tname(ty)
+                        );
+                        self.error(Code::E0208, init.span, msg);
+                        return None;
+                    }
+                };
+                let mut out = Vec::new();
+                for el in elems {
+                    let Some(&(_, mt)) = members.iter().find(|(n, _)| *n == el.name.sym) else {
+                        let shown = self.spelled(el.name.sym, el.name.span);
+                        let msg = format!("{} has no member `{shown}`", self.tname(ty));
+                        self.error(Code::E0104, el.name.span, msg);
+                        continue;
+                    };
+                    if out.iter().any(|(n, _)| *n == el.name.sym) {
+                        let shown = self.spelled(el.name.sym, el.name.span);
+                        self.error(
+                            Code::E0408,
+                            el.name.span,
+                            format!("`{shown}` is initialised twice"),
+                        );
+                        continue;
+                    }
+                    if let Some(v) = self.init_value(&el.value, mt, scope) {
+                        out.push((el.name.sym, v));
+                    }
+                }
+                Some(InitValue::Struct(out))
+            }
+        }
+    }
+
+    // ----- POU variables ------------------------------------------------------
+
+    /// Resolves every variable of a POU (types, initial values, checks).
+    pub(crate) fn resolve_pou(&mut self, p: PouId) {
+        if self.pou_state[p.0 as usize] != State::Todo {
+            return;
+        }
+        self.pou_state[p.0 as usize] = State::InProgress;
+        for v in 0..self.pous[p.0 as usize].vars.len() {
+            self.ensure_var(p, VarId(v as u32));
+        }
+        self.pou_state[p.0 as usize] = State::Done;
+    }
+
+    pub(crate) fn ensure_var(&mut self, p: PouId, v: VarId) {
+        let (pi, vi) = (p.0 as usize, v.0 as usize);
+        match self.pou_var_state[pi][vi] {
+            State::Done => return,
+            State::InProgress => {
+                let var = &self.pous[pi].vars[vi];
+                let span = var.span;
+                let name = self.sym_name(var.name);
+                self.error(
+                    Code::E0705,
+                    span,
+                    format!("the declaration of `{name}` depends on itself"),
+                );
+                self.pou_var_state[pi][vi] = State::Done;
+                return;
+            }
+            State::Todo => {}
+        }
+        self.pou_var_state[pi][vi] = State::InProgress;
+        let scope = Scope::Pou(p);
+        let Some(src) = self.pou_var_src[pi][vi] else {
+            // A function's result variable.
+            let item = self.pous[pi].item;
+            if let Item::Pou(pou) = &self.ast.items[item] {
+                if let Some(rt) = &pou.return_type {
+                    let (t, init) = self.resolve_type_spec(rt, scope, None);
+                    if matches!(self.types.kind(t), TypeKind::Fb(_) | TypeKind::Program(_)) {
+                        self.error(
+                            Code::E0102,
+                            rt.span,
+                            "a function cannot return a function block",
+                        );
+                    }
+                    let var = &mut self.pous[pi].vars[vi];
+                    var.ty = t;
+                    var.init = init;
+                    self.pous[pi].return_type = Some(t);
+                }
+            }
+            self.pou_var_state[pi][vi] = State::Done;
+            return;
+        };
+        let (ty, type_init) = self.resolve_type_spec(&src.decl.ty, scope, None);
+        let init = match &src.decl.init {
+            Some(i) => self.init_value(i, ty, scope),
+            None => type_init,
+        };
+        {
+            let var = &mut self.pous[pi].vars[vi];
+            var.ty = ty;
+            var.init = init;
+        }
+        self.check_var_decl(p, v, src);
+        self.pou_var_state[pi][vi] = State::Done;
+    }
+
+    /// The rules a variable declaration must follow in its POU.
+    fn check_var_decl(&mut self, p: PouId, v: VarId, src: VarSource<'a>) {
+        let pou_kind = self.pous[p.0 as usize].kind;
+        let var = self.pous[p.0 as usize].vars[v.0 as usize].clone();
+        let name = self.spelled(var.name, var.span);
+        let kind_word = match pou_kind {
+            PouKind::Function => "a FUNCTION",
+            PouKind::FunctionBlock => "a FUNCTION_BLOCK",
+            PouKind::Program => "a PROGRAM",
+        };
+        let block_kw = src.block.kind.keyword();
+        let section_ok = !matches!(
+            (pou_kind, src.block.kind),
+            (
+                PouKind::Function,
+                VarKind::Global | VarKind::External | VarKind::Access | VarKind::Config
+            ) | (
+                PouKind::FunctionBlock,
+                VarKind::Global | VarKind::Access | VarKind::Config
+            ) | (PouKind::Program, VarKind::Config)
+        );
+        if !section_ok && src.decl.names.first().is_some_and(|n| n.sym == var.name) {
+            self.error(
+                Code::E0507,
+                src.block.span.shrink_to_lo().to(Span::new(
+                    src.block.span.lo,
+                    src.block.span.lo + block_kw.len() as u32,
+                )),
+                format!("{block_kw} is not allowed in {kind_word}"),
+            );
+        }
+        if let Some(edge) = var.edge {
+            let word = if edge == Edge::Rising {
+                "R_EDGE"
+            } else {
+                "F_EDGE"
+            };
+            if src.block.kind != VarKind::Input || pou_kind == PouKind::Function {
+                self.error(
+                    Code::E0507,
+                    var.span,
+                    format!("{word} is only allowed on inputs of function blocks and programs"),
+                );
+            } else if !self.types.is_bool(var.ty) && var.ty != TypeId::ERROR {
+                self.error(
+                    Code::E0507,
+                    var.span,
+                    format!("{word} applies to BOOL inputs only"),
+                );
+            }
+        }
+        let owned = !matches!(var.section, Section::InOut | Section::External);
+        match self.types.kind(self.innermost_elem(var.ty)) {
+            TypeKind::Fb(_) if pou_kind == PouKind::Function && owned => {
+                self.emit(
+                    Diagnostic::new(
+                        Code::E0501,
+                        src.decl.ty.span,
+                        format!("function block instance `{name}` declared in a FUNCTION"),
+                    )
+                    .with_help("functions have no memory; make this POU a FUNCTION_BLOCK"),
+                );
+            }
+            TypeKind::Program(_) => {
+                self.emit(
+                    Diagnostic::new(
+                        Code::E0504,
+                        src.decl.ty.span,
+                        format!("`{name}` instantiates a PROGRAM outside a configuration"),
+                    )
+                    .with_help("programs are instantiated by a CONFIGURATION or RESOURCE"),
+                );
+                // Reported once: uses of the variable stay silent.
+                self.pous[p.0 as usize].vars[v.0 as usize].ty = TypeId::ERROR;
+            }
+            _ => {}
+        }
+        if let Some(loc) = &src.decl.location {
+            if pou_kind == PouKind::Function {
+                self.error(
+                    Code::E0507,
+                    loc.span,
+                    "a FUNCTION cannot have located variables",
+                );
+            } else {
+                self.check_location(loc.span, &loc.address, var.ty);
+            }
+        }
+    }
+
+    /// The element type of (nested) arrays.
+    pub(crate) fn innermost_elem(&self, mut t: TypeId) -> TypeId {
+        while let TypeKind::Array { elem, .. } = self.types.kind(t) {
+            t = *elem;
+        }
+        t
+    }
+
+    /// E0704: the size prefix of an address fixes the size of its variable.
+    pub(crate) fn check_location(
+        &mut self,
+        span: Span,
+        addr: &stc_syntax::literal::DirectAddress,
+        ty: TypeId,
+    ) {
+        if addr.is_incomplete() || ty == TypeId::ERROR {
+            return;
+        }
+        let Some(e) = self.types.scalar(ty) else {
+            let msg = format!(
+                "a variable of type {} cannot be located at {addr}",
+                self.tname(ty)
+            );
+            self.error(Code::E0704, span, msg);
+            return;
+        };
+        let ok = match addr.size {
+            AddrSize::Bit => e == ElemType::Bool,
+            AddrSize::Byte => matches!(
+                e,
+                ElemType::Byte | ElemType::Sint | ElemType::Usint | ElemType::Char
+            ),
+            AddrSize::Word => matches!(
+                e,
+                ElemType::Word | ElemType::Int | ElemType::Uint | ElemType::Wchar
+            ),
+            AddrSize::Dword => matches!(
+                e,
+                ElemType::Dword | ElemType::Dint | ElemType::Udint | ElemType::Real
+            ),
+            AddrSize::Lword => matches!(
+                e,
+                ElemType::Lword
+                    | ElemType::Lint
+                    | ElemType::Ulint
+                    | ElemType::Lreal
+                    | ElemType::Time
+                    | ElemType::Ltime
+                    | ElemType::Date
+                    | ElemType::Ldate
+                    | ElemType::Tod
+                    | ElemType::Ltod
+                    | ElemType::Dt
+                    | ElemType::Ldt
+            ),
+        };
+        if !ok {
+            let bits = addr.size.bits();
+            let what = if bits == 1 {
+                "a single bit (BOOL)".to_string()
+            } else {
+                format!("{bits} bits")
+            };
+            let msg = format!(
+                "{addr} holds {what}, but the variable is {}",
+                self.tname(ty)
+            );
+            self.emit(
+                Diagnostic::new(Code::E0704, span, msg)
+                    .with_label(format!("{}-bit location", bits)),
+            );
+        }
+    }
+
+    // ----- globals --------------------------------------------------------------
+
+    pub(crate) fn resolve_global(&mut self, g: GlobalId) {
+        let gi = g.0 as usize;
+        match self.global_state[gi] {
+            State::Done => return,
+            State::InProgress => {
+                let span = self.globals[gi].var.span;
+                let name = self.sym_name(self.globals[gi].var.name);
+                self.error(
+                    Code::E0705,
+                    span,
+                    format!("the declaration of `{name}` depends on itself"),
+                );
+                self.global_state[gi] = State::Done;
+                return;
+            }
+            State::Todo => {}
+        }
+        self.global_state[gi] = State::InProgress;
+        let src = self.global_src[gi];
+        let scope = match self.globals[gi].owner {
+            GlobalOwner::TopLevel => Scope::Global,
+            GlobalOwner::Config(c) => Scope::Config(c, None),
+            GlobalOwner::Resource(c, r) => Scope::Config(c, Some(r)),
+        };
+        let (ty, type_init) = self.resolve_type_spec(&src.decl.ty, scope, None);
+        let init = match &src.decl.init {
+            Some(i) => self.init_value(i, ty, scope),
+            None => type_init,
+        };
+        if matches!(self.types.kind(ty), TypeKind::Program(_)) {
+            self.error(
+                Code::E0504,
+                src.decl.ty.span,
+                "a PROGRAM cannot be the type of a global variable",
+            );
+        }
+        if let Some(loc) = &src.decl.location {
+            self.check_location(loc.span, &loc.address, ty);
+        }
+        let var = &mut self.globals[gi].var;
+        var.ty = ty;
+        var.init = init;
+        self.global_state[gi] = State::Done;
+    }
+}

@@ -1,0 +1,1342 @@
+//! Expressions: names, literals, operators, members, indexing.
+//!
+//! Typing is bidirectional. An expression is checked with the type its
+//! context expects (the assignment target, the parameter, the other operand);
+//! untyped literals and unqualified enumeration values ("flexible"
+//! expressions) take that type, everything else has its own type and is then
+//! converted implicitly where spec/semantics.md allows it. Every constant
+//! subexpression is folded with `stc_values`, the same code the VM runs.
+
+use stc_diagnostics::{Code, Diagnostic, Span};
+use stc_syntax::ast::{BinaryOp, ExprId, ExprKind, Ident, LitValue, Literal, TypePrefix, UnaryOp};
+use stc_syntax::literal::AddrSize;
+use stc_syntax::token::ElemType;
+use stc_values::{BinOp, UnOp, Value};
+
+use crate::analyzer::{GlobalName, Scope, Sema};
+use crate::types::{Compat, InitValue, TypeId, TypeKind};
+use crate::{GlobalId, GlobalOwner, Res, Section};
+
+/// The context of a conversion, which decides the diagnostic code.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub(crate) enum Ctx {
+    Assign,
+    Init,
+    Arg,
+}
+
+impl<'a> Sema<'a> {
+    pub(crate) fn check_expr(
+        &mut self,
+        e: ExprId,
+        expected: Option<TypeId>,
+        scope: Scope,
+    ) -> TypeId {
+        let t = self.expr_kind(e, expected, scope);
+        self.set_type(e, t);
+        t
+    }
+
+    fn expr_kind(&mut self, e: ExprId, expected: Option<TypeId>, scope: Scope) -> TypeId {
+        let expr = &self.ast.exprs[e.index()];
+        let span = expr.span;
+        match &expr.kind {
+            ExprKind::Error => TypeId::ERROR,
+            ExprKind::Literal(l) => self.literal(e, l, expected, span, false),
+            ExprKind::Name(id) => self.name_expr(e, *id, expected, scope),
+            ExprKind::EnumValue { ty, value } => self.qualified_enum(e, *ty, *value),
+            ExprKind::Address(a) => {
+                if a.is_incomplete() {
+                    self.error(
+                        Code::E0010,
+                        span,
+                        format!("the incomplete address {a} can only be used in an AT clause"),
+                    );
+                    return TypeId::ERROR;
+                }
+                let e = match a.size {
+                    AddrSize::Bit => ElemType::Bool,
+                    AddrSize::Byte => ElemType::Byte,
+                    AddrSize::Word => ElemType::Word,
+                    AddrSize::Dword => ElemType::Dword,
+                    AddrSize::Lword => ElemType::Lword,
+                };
+                self.types.elem(e)
+            }
+            ExprKind::Member { base, member } => self.member(e, *base, *member, scope),
+            ExprKind::PartialAccess { base, size, index } => {
+                let bt = self.check_expr(*base, None, scope);
+                if bt == TypeId::ERROR {
+                    return TypeId::ERROR;
+                }
+                let part = match size {
+                    AddrSize::Bit => ElemType::Bool,
+                    AddrSize::Byte => ElemType::Byte,
+                    AddrSize::Word => ElemType::Word,
+                    AddrSize::Dword => ElemType::Dword,
+                    AddrSize::Lword => ElemType::Lword,
+                };
+                let width = self
+                    .types
+                    .numeric(bt)
+                    .filter(|t| stc_values::is_integer(*t) || stc_values::is_bit_string(*t))
+                    .map(stc_values::bits);
+                match width {
+                    Some(w) if w > size.bits() => {
+                        let parts = w / size.bits();
+                        if *index >= parts {
+                            let msg = format!(
+                                "{} has parts 0..{} of this size, not {index}",
+                                self.tname(bt),
+                                parts - 1
+                            );
+                            self.error(Code::E0701, span, msg);
+                        }
+                        self.types.elem(part)
+                    }
+                    _ => {
+                        let msg =
+                            format!("a value of type {} has no bits to select", self.tname(bt));
+                        self.error(Code::E0201, span, msg);
+                        TypeId::ERROR
+                    }
+                }
+            }
+            ExprKind::Index { base, indices } => self.index(e, *base, indices, scope),
+            ExprKind::Call { callee, args } => self.call(e, *callee, args, expected, scope, false),
+            ExprKind::Unary { op, operand } => self.unary(e, *op, *operand, expected, scope),
+            ExprKind::Binary { op, lhs, rhs } => self.binary(e, *op, *lhs, *rhs, expected, scope),
+            ExprKind::Paren(inner) => {
+                let t = self.check_expr(*inner, expected, scope);
+                if let Some(v) = self.consts.get(inner).cloned() {
+                    self.consts.insert(e, v);
+                }
+                if let Some(r) = self.resolutions.get(inner).copied() {
+                    if matches!(r, Res::EnumValue(..)) {
+                        self.resolutions.insert(e, r);
+                    }
+                }
+                t
+            }
+        }
+    }
+
+    // ----- literals ---------------------------------------------------------
+
+    /// The type a literal takes, from its prefix or its context.
+    pub(crate) fn literal(
+        &mut self,
+        e: ExprId,
+        l: &Literal,
+        expected: Option<TypeId>,
+        span: Span,
+        negated: bool,
+    ) -> TypeId {
+        let prefix_ty = match l.prefix {
+            Some(TypePrefix::Elem(t, _)) => Some(self.types.elem(t)),
+            Some(TypePrefix::Named(id)) => match self.names.get(&id.sym).copied() {
+                Some(GlobalName::Type(i)) => Some(self.resolve_type_decl(i).0),
+                _ => {
+                    let shown = self.spelled(id.sym, id.span);
+                    self.error(Code::E0102, id.span, format!("unknown type `{shown}`"));
+                    return TypeId::ERROR;
+                }
+            },
+            None => None,
+        };
+        if prefix_ty == Some(TypeId::ERROR) {
+            return TypeId::ERROR;
+        }
+        let target = prefix_ty.or(expected.filter(|t| *t != TypeId::ERROR));
+        let target_scalar = target.and_then(|t| self.types.numeric(t));
+        match &l.value {
+            LitValue::Int { value, negative } => {
+                let mut v = *value as i128;
+                if *negative != negated {
+                    v = -v;
+                }
+                match target_scalar {
+                    Some(ElemType::Bool) => {
+                        if v == 0 || v == 1 {
+                            self.consts.insert(e, Value::Bool(v == 1));
+                            return self.types.elem(ElemType::Bool);
+                        }
+                        if prefix_ty.is_some() {
+                            self.error(
+                                Code::E0303,
+                                span,
+                                format!("`{v}` is not a BOOL: only 0 and 1 are"),
+                            );
+                            return TypeId::ERROR;
+                        }
+                    }
+                    Some(t) if stc_values::is_real(t) => {
+                        let value = if t == ElemType::Real {
+                            (v as f32) as f64
+                        } else {
+                            v as f64
+                        };
+                        self.consts.insert(e, Value::Real(value));
+                        return self.types.elem(t);
+                    }
+                    Some(t) if stc_values::is_integer(t) || stc_values::is_bit_string(t) => {
+                        let (min, max) = stc_values::int_range(t).unwrap_or((0, 0));
+                        if v < min || v > max {
+                            let shown = target.map(|t| self.tname(t)).unwrap_or_default();
+                            self.emit(
+                                Diagnostic::new(
+                                    Code::E0303,
+                                    span,
+                                    format!("`{v}` is out of the range of {shown} ({min}..{max})"),
+                                )
+                                .with_label(format!("does not fit in {shown}")),
+                            );
+                            return TypeId::ERROR;
+                        }
+                        self.consts.insert(e, Value::Int(v));
+                        return self.types.elem(t);
+                    }
+                    _ => {}
+                }
+                if let Some(pt) = prefix_ty {
+                    let msg = format!("an integer literal cannot have type {}", self.tname(pt));
+                    self.error(Code::E0303, span, msg);
+                    return TypeId::ERROR;
+                }
+                self.consts.insert(e, Value::Int(v));
+                let t = if i32::try_from(v).is_ok() {
+                    ElemType::Dint
+                } else if i64::try_from(v).is_ok() {
+                    ElemType::Lint
+                } else if u64::try_from(v).is_ok() {
+                    ElemType::Ulint
+                } else {
+                    self.error(
+                        Code::E0303,
+                        span,
+                        format!("`{v}` is out of the range of every integer type"),
+                    );
+                    return TypeId::ERROR;
+                };
+                self.types.elem(t)
+            }
+            LitValue::Real(r) => {
+                let r = if negated { -*r } else { *r };
+                let t = match target_scalar {
+                    Some(ElemType::Real) => ElemType::Real,
+                    _ => ElemType::Lreal,
+                };
+                if let Some(pt) = prefix_ty {
+                    if !self.types.numeric(pt).is_some_and(stc_values::is_real) {
+                        let msg = format!("a real literal cannot have type {}", self.tname(pt));
+                        self.error(Code::E0303, span, msg);
+                        return TypeId::ERROR;
+                    }
+                }
+                let value = if t == ElemType::Real {
+                    let f = r as f32;
+                    if f.is_infinite() {
+                        self.error(
+                            Code::E0303,
+                            span,
+                            format!("`{r}` is out of the range of REAL"),
+                        );
+                        return TypeId::ERROR;
+                    }
+                    f as f64
+                } else {
+                    r
+                };
+                self.consts.insert(e, Value::Real(value));
+                self.types.elem(t)
+            }
+            LitValue::Bool(b) => {
+                if let Some(pt) = prefix_ty {
+                    if !self.types.is_bool(pt) {
+                        let msg = format!("TRUE and FALSE cannot have type {}", self.tname(pt));
+                        self.error(Code::E0303, span, msg);
+                        return TypeId::ERROR;
+                    }
+                }
+                self.consts.insert(e, Value::Bool(*b));
+                self.types.elem(ElemType::Bool)
+            }
+            LitValue::String { value, wide } => {
+                let chars = value.chars().count() as u32;
+                let char_prefix = matches!(
+                    l.prefix,
+                    Some(TypePrefix::Elem(ElemType::Char | ElemType::Wchar, _))
+                );
+                if let Some(TypePrefix::Elem(p, _)) = l.prefix {
+                    let ok = match p {
+                        ElemType::String | ElemType::Char => !wide,
+                        ElemType::Wstring | ElemType::Wchar => *wide,
+                        _ => false,
+                    };
+                    if !ok || (char_prefix && chars != 1) {
+                        self.error(
+                            Code::E0303,
+                            span,
+                            format!("this string literal cannot have type {}", p.name()),
+                        );
+                        return TypeId::ERROR;
+                    }
+                }
+                let v = if *wide {
+                    Value::WStr(value.encode_utf16().collect())
+                } else {
+                    let mut bytes = Vec::with_capacity(value.len());
+                    for c in value.chars() {
+                        match u8::try_from(c as u32) {
+                            Ok(b) => bytes.push(b),
+                            Err(_) => {
+                                self.emit(
+                                    Diagnostic::new(
+                                        Code::E0303,
+                                        span,
+                                        format!("`{c}` cannot be stored in a single-byte STRING"),
+                                    )
+                                    .with_help(
+                                        "use a WSTRING (\"...\") for characters beyond U+00FF",
+                                    ),
+                                );
+                                return TypeId::ERROR;
+                            }
+                        }
+                    }
+                    Value::Str(bytes)
+                };
+                if char_prefix {
+                    let code = match &v {
+                        Value::Str(b) => b.first().copied().unwrap_or(0) as i128,
+                        Value::WStr(u) => u.first().copied().unwrap_or(0) as i128,
+                        _ => 0,
+                    };
+                    self.consts.insert(e, Value::Int(code));
+                    return self.types.elem(if *wide {
+                        ElemType::Wchar
+                    } else {
+                        ElemType::Char
+                    });
+                }
+                self.consts.insert(e, v);
+                self.types.string(*wide, chars.max(1))
+            }
+            LitValue::Duration { ns, long } => {
+                self.consts.insert(e, Value::Int(*ns as i128));
+                self.types.elem(if *long {
+                    ElemType::Ltime
+                } else {
+                    ElemType::Time
+                })
+            }
+            LitValue::Date { secs, long } => {
+                self.consts.insert(e, Value::Int(*secs as i128));
+                self.types.elem(if *long {
+                    ElemType::Ldate
+                } else {
+                    ElemType::Date
+                })
+            }
+            LitValue::Tod { ns, long } => {
+                self.consts.insert(e, Value::Int(*ns as i128));
+                self.types
+                    .elem(if *long { ElemType::Ltod } else { ElemType::Tod })
+            }
+            LitValue::Dt { ns, long } => {
+                self.consts.insert(e, Value::Int(*ns as i128));
+                self.types
+                    .elem(if *long { ElemType::Ldt } else { ElemType::Dt })
+            }
+        }
+    }
+
+    // ----- names ------------------------------------------------------------
+
+    /// Whether an expression takes its type from its context: untyped numeric
+    /// literals and unqualified enumeration values, and operators over them.
+    pub(crate) fn is_flexible(&self, e: ExprId, scope: Scope) -> bool {
+        match &self.ast.expr(e).kind {
+            ExprKind::Literal(l) => {
+                l.prefix.is_none() && matches!(l.value, LitValue::Int { .. } | LitValue::Real(_))
+            }
+            ExprKind::Unary {
+                op: UnaryOp::Neg | UnaryOp::Plus,
+                operand,
+            } => self.is_flexible(*operand, scope),
+            ExprKind::Paren(i) => self.is_flexible(*i, scope),
+            ExprKind::Binary { op, lhs, rhs } => {
+                !matches!(
+                    op,
+                    BinaryOp::Eq
+                        | BinaryOp::Ne
+                        | BinaryOp::Lt
+                        | BinaryOp::Le
+                        | BinaryOp::Gt
+                        | BinaryOp::Ge
+                ) && self.is_flexible(*lhs, scope)
+                    && self.is_flexible(*rhs, scope)
+            }
+            ExprKind::Name(id) => {
+                !self.is_variable_name(id.sym, scope)
+                    && self.enum_candidates(id.sym, scope).next().is_some()
+            }
+            _ => false,
+        }
+    }
+
+    fn is_variable_name(&self, sym: stc_syntax::Symbol, scope: Scope) -> bool {
+        match scope {
+            Scope::Pou(p) => self.pous[p.0 as usize].lookup(sym).is_some(),
+            Scope::Config(c, r) => self.config_global(sym, c, r).is_some(),
+            Scope::Global => self.global_constant(sym).is_some(),
+        }
+    }
+
+    /// Enumeration values named `sym` visible in the scope: (type, index, local?).
+    pub(crate) fn enum_candidates(
+        &self,
+        sym: stc_syntax::Symbol,
+        scope: Scope,
+    ) -> impl Iterator<Item = (TypeId, u32, bool)> + '_ {
+        let pou = match scope {
+            Scope::Pou(p) => Some(p),
+            _ => None,
+        };
+        self.enum_index
+            .get(&sym)
+            .into_iter()
+            .flatten()
+            .filter(move |(_, _, owner)| owner.is_none() || *owner == pou)
+            .map(|(t, i, owner)| (*t, *i, owner.is_some()))
+    }
+
+    pub(crate) fn global_constant(&self, sym: stc_syntax::Symbol) -> Option<GlobalId> {
+        self.globals
+            .iter()
+            .position(|g| g.var.name == sym && g.var.constant)
+            .map(|i| GlobalId(i as u32))
+    }
+
+    /// A global visible in a configuration (or one of its resources).
+    pub(crate) fn config_global(
+        &self,
+        sym: stc_syntax::Symbol,
+        c: usize,
+        r: Option<usize>,
+    ) -> Option<GlobalId> {
+        let find = |owner: GlobalOwner| {
+            self.globals
+                .iter()
+                .position(|g| g.owner == owner && g.var.name == sym)
+                .map(|i| GlobalId(i as u32))
+        };
+        r.and_then(|r| find(GlobalOwner::Resource(c, r)))
+            .or_else(|| find(GlobalOwner::Config(c)))
+            .or_else(|| find(GlobalOwner::TopLevel))
+    }
+
+    fn name_expr(
+        &mut self,
+        e: ExprId,
+        id: Ident,
+        expected: Option<TypeId>,
+        scope: Scope,
+    ) -> TypeId {
+        match scope {
+            Scope::Pou(p) => {
+                if let Some(v) = self.pous[p.0 as usize].lookup(id.sym) {
+                    self.ensure_var(p, v);
+                    self.resolutions.insert(e, Res::Var(v));
+                    self.used.insert((p, v));
+                    let var = &self.pous[p.0 as usize].vars[v.0 as usize];
+                    if var.constant {
+                        if let Some(InitValue::Scalar(val)) = &var.init {
+                            self.consts.insert(e, val.clone());
+                        } else if var.init.is_none() && var.section != Section::External {
+                            if let Some(s) = self.types.scalar(var.ty) {
+                                self.consts.insert(e, stc_values::default_value(s));
+                            }
+                        }
+                    }
+                    return var.ty;
+                }
+            }
+            Scope::Config(c, r) => {
+                if let Some(g) = self.config_global(id.sym, c, r) {
+                    return self.global_ref(e, g);
+                }
+            }
+            Scope::Global => {
+                if let Some(g) = self.global_constant(id.sym) {
+                    return self.global_ref(e, g);
+                }
+            }
+        }
+        if let Some(t) = self.unqualified_enum(e, id, expected, scope) {
+            return t;
+        }
+        let shown = self.spelled(id.sym, id.span);
+        if let Some(g) = self.names.get(&id.sym).copied() {
+            let what = match g {
+                GlobalName::Type(_) => "a data type",
+                GlobalName::Config(_) => "a configuration",
+                GlobalName::Pou(p) => match self.pous[p.0 as usize].kind {
+                    stc_syntax::ast::PouKind::Function => "a function",
+                    stc_syntax::ast::PouKind::FunctionBlock => "a function block type",
+                    stc_syntax::ast::PouKind::Program => "a program",
+                },
+            };
+            self.emit(
+                Diagnostic::new(
+                    Code::E0110,
+                    id.span,
+                    format!("`{shown}` is {what}, not a variable"),
+                )
+                .with_label("not a variable"),
+            );
+            return TypeId::ERROR;
+        }
+        let mut d = Diagnostic::new(
+            Code::E0101,
+            id.span,
+            format!("undeclared variable `{shown}`"),
+        )
+        .with_label("not declared");
+        let candidates: Vec<String> = match scope {
+            Scope::Pou(p) => self.pous[p.0 as usize]
+                .vars
+                .iter()
+                .map(|v| self.sym_name(v.name))
+                .collect(),
+            _ => self
+                .globals
+                .iter()
+                .map(|g| self.sym_name(g.var.name))
+                .collect(),
+        };
+        if let Some(s) = self.did_you_mean(&shown, candidates.iter().map(|s| s.as_str())) {
+            d = d.with_help(format!("did you mean `{s}`?"));
+        } else if let Scope::Pou(_) = scope {
+            if self.globals.iter().any(|g| g.var.name == id.sym) {
+                d = d.with_help(format!(
+                    "`{shown}` is a global variable: declare it in VAR_EXTERNAL to use it here"
+                ));
+            }
+        }
+        self.emit(d);
+        TypeId::ERROR
+    }
+
+    fn global_ref(&mut self, e: ExprId, g: GlobalId) -> TypeId {
+        self.resolve_global(g);
+        self.resolutions.insert(e, Res::Global(g));
+        let var = &self.globals[g.0 as usize].var;
+        if var.constant {
+            if let Some(InitValue::Scalar(v)) = &var.init {
+                self.consts.insert(e, v.clone());
+            }
+        }
+        var.ty
+    }
+
+    /// An enumeration value named without its type, resolved from context.
+    fn unqualified_enum(
+        &mut self,
+        e: ExprId,
+        id: Ident,
+        expected: Option<TypeId>,
+        scope: Scope,
+    ) -> Option<TypeId> {
+        if let Some(t) = expected {
+            if let TypeKind::Enum { values, .. } = self.types.kind(t) {
+                if let Some(i) = values.iter().position(|v| v.name == id.sym) {
+                    let value = values[i].value;
+                    self.resolutions.insert(e, Res::EnumValue(t, i as u32));
+                    self.consts.insert(e, Value::Int(value));
+                    return Some(t);
+                }
+            }
+        }
+        let cands: Vec<(TypeId, u32, bool)> = self.enum_candidates(id.sym, scope).collect();
+        if cands.is_empty() {
+            return None;
+        }
+        let local: Vec<&(TypeId, u32, bool)> = cands.iter().filter(|c| c.2).collect();
+        let pick = if local.len() == 1 {
+            Some(*local[0])
+        } else if cands.len() == 1 {
+            Some(cands[0])
+        } else {
+            None
+        };
+        match pick {
+            Some((t, i, _)) => {
+                if let TypeKind::Enum { values, .. } = self.types.kind(t) {
+                    let value = values[i as usize].value;
+                    self.consts.insert(e, Value::Int(value));
+                }
+                self.resolutions.insert(e, Res::EnumValue(t, i));
+                Some(t)
+            }
+            None if expected == Some(TypeId::ERROR) => Some(TypeId::ERROR),
+            None => {
+                let shown = self.spelled(id.sym, id.span);
+                let types: Vec<String> = cands
+                    .iter()
+                    .map(|c| format!("`{}#{shown}`", self.tname(c.0)))
+                    .collect();
+                self.emit(
+                    Diagnostic::new(
+                        Code::E0108,
+                        id.span,
+                        format!("`{shown}` is a value of several enumeration types"),
+                    )
+                    .with_label("ambiguous")
+                    .with_help(format!("write one of {}", types.join(", "))),
+                );
+                Some(TypeId::ERROR)
+            }
+        }
+    }
+
+    fn qualified_enum(&mut self, e: ExprId, ty: Ident, value: Ident) -> TypeId {
+        let t = match self.names.get(&ty.sym).copied() {
+            Some(GlobalName::Type(i)) => self.resolve_type_decl(i).0,
+            _ => {
+                let shown = self.spelled(ty.sym, ty.span);
+                self.error(Code::E0102, ty.span, format!("unknown type `{shown}`"));
+                return TypeId::ERROR;
+            }
+        };
+        if t == TypeId::ERROR {
+            return t;
+        }
+        let TypeKind::Enum { values, .. } = self.types.kind(t) else {
+            let msg = format!("`{}` is not an enumeration type", self.tname(t));
+            self.error(Code::E0109, ty.span, msg);
+            return TypeId::ERROR;
+        };
+        match values.iter().position(|v| v.name == value.sym) {
+            Some(i) => {
+                let v = values[i].value;
+                self.consts.insert(e, Value::Int(v));
+                self.resolutions.insert(e, Res::EnumValue(t, i as u32));
+                t
+            }
+            None => {
+                let names: Vec<String> = values.iter().map(|v| self.sym_name(v.name)).collect();
+                let shown = self.spelled(value.sym, value.span);
+                let mut d = Diagnostic::new(
+                    Code::E0109,
+                    value.span,
+                    format!("`{}` has no value `{shown}`", self.tname(t)),
+                )
+                .with_label("not a value of this type");
+                if let Some(s) = self.did_you_mean(&shown, names.iter().map(|s| s.as_str())) {
+                    d = d.with_help(format!("did you mean `{s}`?"));
+                } else {
+                    d = d.with_note(format!("its values are {}", names.join(", ")));
+                }
+                self.emit(d);
+                TypeId::ERROR
+            }
+        }
+    }
+
+    // ----- members and indexing ---------------------------------------------
+
+    fn member(&mut self, e: ExprId, base: ExprId, member: Ident, scope: Scope) -> TypeId {
+        let bt = self.check_expr(base, None, scope);
+        if bt == TypeId::ERROR {
+            return TypeId::ERROR;
+        }
+        let shown = self.spelled(member.sym, member.span);
+        match self.types.kind(bt).clone() {
+            TypeKind::Struct { fields } => match fields.iter().position(|f| f.name == member.sym) {
+                Some(i) => {
+                    self.resolutions.insert(e, Res::Field(i as u32));
+                    fields[i].ty
+                }
+                None => {
+                    let names: Vec<String> = fields.iter().map(|f| self.sym_name(f.name)).collect();
+                    let mut d = Diagnostic::new(
+                        Code::E0104,
+                        member.span,
+                        format!("{} has no member `{shown}`", self.tname(bt)),
+                    )
+                    .with_label("unknown member");
+                    if let Some(s) = self.did_you_mean(&shown, names.iter().map(|s| s.as_str())) {
+                        d = d.with_help(format!("did you mean `{s}`?"));
+                    }
+                    self.emit(d);
+                    TypeId::ERROR
+                }
+            },
+            TypeKind::Fb(p) | TypeKind::Program(p) => {
+                self.resolve_pou(p);
+                let pou = &self.pous[p.0 as usize];
+                match pou.lookup(member.sym) {
+                    Some(v) if matches!(pou.var(v).section, Section::Input | Section::Output) => {
+                        let ty = pou.var(v).ty;
+                        self.resolutions.insert(e, Res::FbMember(p, v));
+                        ty
+                    }
+                    found => {
+                        let names: Vec<String> = pou
+                            .vars
+                            .iter()
+                            .filter(|v| matches!(v.section, Section::Input | Section::Output))
+                            .map(|v| self.sym_name(v.name))
+                            .collect();
+                        let what = if found.is_some() {
+                            "an input or output of"
+                        } else {
+                            "a member of"
+                        };
+                        let mut d = Diagnostic::new(
+                            Code::E0104,
+                            member.span,
+                            format!("`{shown}` is not {what} `{}`", self.tname(bt)),
+                        )
+                        .with_label("unknown member");
+                        if found.is_none() {
+                            if let Some(s) =
+                                self.did_you_mean(&shown, names.iter().map(|s| s.as_str()))
+                            {
+                                d = d.with_help(format!("did you mean `{s}`?"));
+                            }
+                        } else {
+                            d = d.with_note(
+                                "only the inputs and outputs of an instance are visible outside it",
+                            );
+                        }
+                        self.emit(d);
+                        TypeId::ERROR
+                    }
+                }
+            }
+            _ => {
+                let msg = format!("a value of type {} has no members", self.tname(bt));
+                self.emit(
+                    Diagnostic::new(Code::E0207, member.span, msg).with_label("no member here"),
+                );
+                TypeId::ERROR
+            }
+        }
+    }
+
+    fn index(&mut self, e: ExprId, base: ExprId, indices: &[ExprId], scope: Scope) -> TypeId {
+        let partial_ok = std::mem::take(&mut self.partial_index_ok) == Some(e);
+        if let ExprKind::Index { .. } = self.ast.expr(base).kind {
+            // `a[i][j]` on a two-dimensional array: the inner index may be partial.
+            self.partial_index_ok = Some(base);
+        }
+        let bt = self.check_expr(base, None, scope);
+        let (dims, elem) = match self.types.kind(bt).clone() {
+            TypeKind::Array { dims, elem } => (dims, elem),
+            _ => {
+                for &i in indices {
+                    self.check_expr(i, None, scope);
+                }
+                if bt != TypeId::ERROR {
+                    let span = self.ast.expr(base).span;
+                    let msg = format!("a value of type {} cannot be indexed", self.tname(bt));
+                    self.emit(Diagnostic::new(Code::E0206, span, msg).with_label("not an array"));
+                }
+                return TypeId::ERROR;
+            }
+        };
+        let mut ok = true;
+        for (k, &i) in indices.iter().enumerate() {
+            let it = self.check_expr(i, None, scope);
+            if it == TypeId::ERROR {
+                ok = false;
+                continue;
+            }
+            if !self.types.is_integer(it) {
+                let span = self.ast.expr(i).span;
+                let msg = format!("an array index must be an integer, not {}", self.tname(it));
+                self.emit(Diagnostic::new(Code::E0205, span, msg).with_label("not an integer"));
+                ok = false;
+                continue;
+            }
+            if let (Some((lo, hi)), Some(Value::Int(v))) = (dims.get(k), self.consts.get(&i)) {
+                if v < lo || v > hi {
+                    let span = self.ast.expr(i).span;
+                    let msg = format!("index {v} is out of the bounds {lo}..{hi}");
+                    self.emit(Diagnostic::new(Code::E0701, span, msg).with_label("out of bounds"));
+                    ok = false;
+                }
+            }
+        }
+        if indices.len() > dims.len() {
+            let span = self.ast.expr(indices[dims.len()]).span;
+            let msg = format!(
+                "too many indices: the array has {} dimension(s)",
+                dims.len()
+            );
+            self.emit(Diagnostic::new(Code::E0206, span, msg));
+            return TypeId::ERROR;
+        }
+        if !ok {
+            return TypeId::ERROR;
+        }
+        if indices.len() < dims.len() {
+            if !partial_ok {
+                let span = self.ast.expr(e).span;
+                let msg = format!("too few indices: the array has {} dimensions", dims.len());
+                self.emit(
+                    Diagnostic::new(Code::E0206, span, msg)
+                        .with_help("give one index per dimension: `a[i, j]`"),
+                );
+                return TypeId::ERROR;
+            }
+            // `a[i]` of `a[i][j]`: the rest of the dimensions.
+            let rest = dims[indices.len()..].to_vec();
+            return self
+                .types
+                .add(TypeKind::Array { dims: rest, elem }, None, None);
+        }
+        elem
+    }
+
+    // ----- operators ----------------------------------------------------------
+
+    fn unary(
+        &mut self,
+        e: ExprId,
+        op: UnaryOp,
+        operand: ExprId,
+        expected: Option<TypeId>,
+        scope: Scope,
+    ) -> TypeId {
+        let span = self.ast.expr(e).span;
+        if op == UnaryOp::Neg {
+            if let ExprKind::Literal(l) = &self.ast.expr(operand).kind {
+                if l.prefix.is_none() && matches!(l.value, LitValue::Int { .. } | LitValue::Real(_))
+                {
+                    // A negative literal is one literal, range-checked as a whole.
+                    let t = self.literal(e, l, expected, span, true);
+                    self.set_type(operand, t);
+                    return t;
+                }
+            }
+        }
+        let hint = expected.filter(|t| self.types.numeric(*t).is_some());
+        let t = self.check_expr(operand, hint, scope);
+        if t == TypeId::ERROR {
+            return t;
+        }
+        let Some(s) = self.types.numeric(t) else {
+            return self.bad_unary(op, t, span);
+        };
+        let ok = match op {
+            UnaryOp::Neg | UnaryOp::Plus => {
+                stc_values::in_family(stc_syntax::token::GenericType::AnyNum, s)
+                    || matches!(s, ElemType::Time | ElemType::Ltime)
+            }
+            UnaryOp::Not => stc_values::is_bit_string(s),
+        };
+        if !ok {
+            return self.bad_unary(op, t, span);
+        }
+        let t = self.types.elem(s);
+        if let Some(v) = self.consts.get(&operand).cloned() {
+            let folded = match op {
+                UnaryOp::Plus => Ok(stc_values::Outcome {
+                    value: v,
+                    overflow: false,
+                }),
+                UnaryOp::Neg => stc_values::unary(UnOp::Neg, s, &v),
+                UnaryOp::Not => stc_values::unary(UnOp::Not, s, &v),
+            };
+            self.record_fold(e, folded, span, None);
+        }
+        t
+    }
+
+    fn bad_unary(&mut self, op: UnaryOp, t: TypeId, span: Span) -> TypeId {
+        let (sym, need) = match op {
+            UnaryOp::Neg => ("-", "a number or a duration"),
+            UnaryOp::Plus => ("+", "a number or a duration"),
+            UnaryOp::Not => ("NOT", "BOOL or a bit string"),
+        };
+        let msg = format!("`{sym}` needs {need}, not {}", self.tname(t));
+        self.emit(Diagnostic::new(Code::E0201, span, msg));
+        TypeId::ERROR
+    }
+
+    /// Records a folded constant (or the fold's problem).
+    pub(crate) fn record_fold(
+        &mut self,
+        e: ExprId,
+        r: Result<stc_values::Outcome, stc_values::Fault>,
+        span: Span,
+        divisor: Option<Span>,
+    ) {
+        match r {
+            Ok(o) => {
+                if o.overflow {
+                    let msg = "integer overflow in a constant expression: the value wraps around"
+                        .to_string();
+                    self.emit(
+                        Diagnostic::new(Code::W0107, span, msg)
+                            .with_label(format!("this wraps around to {}", show_value(&o.value))),
+                    );
+                }
+                self.consts.insert(e, o.value);
+            }
+            Err(stc_values::Fault::DivisionByZero) => {
+                let at = divisor.unwrap_or(span);
+                self.emit(
+                    Diagnostic::new(Code::E0703, at, "division by zero").with_label("this is zero"),
+                );
+            }
+            Err(_) => {}
+        }
+    }
+
+    fn binary(
+        &mut self,
+        e: ExprId,
+        op: BinaryOp,
+        l: ExprId,
+        r: ExprId,
+        expected: Option<TypeId>,
+        scope: Scope,
+    ) -> TypeId {
+        let span = self.ast.expr(e).span;
+        let cmp = matches!(
+            op,
+            BinaryOp::Eq | BinaryOp::Ne | BinaryOp::Lt | BinaryOp::Le | BinaryOp::Gt | BinaryOp::Ge
+        );
+        // What the operands are told to expect.
+        let outer = if cmp {
+            None
+        } else {
+            expected.filter(|t| self.types.scalar(*t).is_some())
+        };
+        let lf = self.is_flexible(l, scope);
+        let rf = self.is_flexible(r, scope);
+        let (lt, rt) = if op == BinaryOp::Pow {
+            let base_hint = match outer.and_then(|t| self.types.numeric(t)) {
+                Some(ElemType::Real) => Some(self.types.elem(ElemType::Real)),
+                _ => Some(self.types.elem(ElemType::Lreal)),
+            };
+            let lt = self.check_expr(l, if lf { base_hint } else { None }, scope);
+            let rt = self.check_expr(r, None, scope);
+            (lt, rt)
+        } else if !lf || rf {
+            let lt = self.check_expr(l, outer, scope);
+            let hint = self.operand_hint(op, lt).or(outer);
+            let rt = self.check_expr(r, hint, scope);
+            (lt, rt)
+        } else {
+            let rt = self.check_expr(r, outer, scope);
+            let hint = self.operand_hint(op, rt).or(outer);
+            let lt = self.check_expr(l, hint, scope);
+            (lt, rt)
+        };
+        if lt == TypeId::ERROR || rt == TypeId::ERROR {
+            return if cmp {
+                self.types.elem(ElemType::Bool)
+            } else {
+                TypeId::ERROR
+            };
+        }
+        if self.instance_as_value(l, lt) || self.instance_as_value(r, rt) {
+            return if cmp {
+                self.types.elem(ElemType::Bool)
+            } else {
+                TypeId::ERROR
+            };
+        }
+        let Some((result, operand)) = self.binary_types(op, l, lt, r, rt, span) else {
+            return if cmp {
+                self.types.elem(ElemType::Bool)
+            } else {
+                TypeId::ERROR
+            };
+        };
+        // Folding, and the static division-by-zero check.
+        let (ls, rs) = (self.types.scalar(lt), self.types.scalar(rt));
+        let rspan = self.ast.expr(r).span;
+        if matches!(op, BinaryOp::Div | BinaryOp::Mod) {
+            if let Some(Value::Int(0)) = self.consts.get(&r) {
+                if rs.is_some_and(|t| !stc_values::is_real(t)) {
+                    self.emit(
+                        Diagnostic::new(Code::E0703, rspan, "division by zero")
+                            .with_label("this is zero"),
+                    );
+                    return TypeId::ERROR;
+                }
+            }
+        }
+        if let (Some(lv), Some(rv), Some(ls), Some(rs), Some(res)) = (
+            self.consts.get(&l).cloned(),
+            self.consts.get(&r).cloned(),
+            ls,
+            rs,
+            self.types.scalar(result),
+        ) {
+            let (lv, lty) = match operand {
+                Some(o) if o != ls => (stc_values::convert(ls, o, &lv).ok(), o),
+                _ => (Some(lv), ls),
+            };
+            let (rv, rty) = match operand {
+                Some(o) if o != rs && op != BinaryOp::Pow => {
+                    (stc_values::convert(rs, o, &rv).ok(), o)
+                }
+                _ => (Some(rv), rs),
+            };
+            if let (Some(lv), Some(rv)) = (lv, rv) {
+                let r = stc_values::binary(bin_op(op), lty, &lv, rty, &rv, res);
+                self.record_fold(e, r, span, Some(rspan));
+            }
+        }
+        result
+    }
+
+    /// The type the other operand should take when one operand has type `t`.
+    fn operand_hint(&self, op: BinaryOp, t: TypeId) -> Option<TypeId> {
+        if t == TypeId::ERROR {
+            return Some(TypeId::ERROR);
+        }
+        let s = self.types.scalar(t)?;
+        if stc_values::is_time_like(s) {
+            return match op {
+                BinaryOp::Mul | BinaryOp::Div => None,
+                BinaryOp::Add | BinaryOp::Sub if matches!(s, ElemType::Tod | ElemType::Dt) => None,
+                BinaryOp::Add | BinaryOp::Sub if matches!(s, ElemType::Ltod | ElemType::Ldt) => {
+                    None
+                }
+                _ => Some(t),
+            };
+        }
+        Some(t)
+    }
+
+    /// The result type of `lt op rt`, and the common operand type (with the
+    /// implicit conversions recorded), or `None` after reporting E0201.
+    fn binary_types(
+        &mut self,
+        op: BinaryOp,
+        l: ExprId,
+        lt: TypeId,
+        r: ExprId,
+        rt: TypeId,
+        span: Span,
+    ) -> Option<(TypeId, Option<ElemType>)> {
+        use ElemType as E;
+        let bool_ty = self.types.elem(E::Bool);
+        let ls = self.types.scalar(lt);
+        let enums = matches!(self.types.kind(lt), TypeKind::Enum { .. })
+            || matches!(self.types.kind(rt), TypeKind::Enum { .. });
+        let fail = |s: &mut Self| {
+            let msg = format!(
+                "`{}` cannot be applied to {} and {}",
+                op.symbol(),
+                s.tname(lt),
+                s.tname(rt)
+            );
+            s.emit(Diagnostic::new(Code::E0201, span, msg).with_label(format!(
+                "{} {} {}",
+                s.tname(lt),
+                op.symbol(),
+                s.tname(rt)
+            )));
+            None
+        };
+        match op {
+            BinaryOp::Eq
+            | BinaryOp::Ne
+            | BinaryOp::Lt
+            | BinaryOp::Le
+            | BinaryOp::Gt
+            | BinaryOp::Ge => {
+                if enums {
+                    if lt == rt && matches!(op, BinaryOp::Eq | BinaryOp::Ne) {
+                        return Some((bool_ty, ls));
+                    }
+                    return fail(self);
+                }
+                match (self.types.kind(lt).clone(), self.types.kind(rt).clone()) {
+                    (TypeKind::String { wide: a, .. }, TypeKind::String { wide: b, .. })
+                        if a == b =>
+                    {
+                        return Some((bool_ty, ls));
+                    }
+                    _ => {}
+                }
+                let (Some(a), Some(b)) = (self.types.numeric(lt), self.types.numeric(rt)) else {
+                    return fail(self);
+                };
+                let Some(c) = self.unify(l, a, r, b) else {
+                    return fail(self);
+                };
+                Some((bool_ty, Some(c)))
+            }
+            _ if enums => fail(self),
+            BinaryOp::And | BinaryOp::Or | BinaryOp::Xor => {
+                let (Some(a), Some(b)) = (self.types.numeric(lt), self.types.numeric(rt)) else {
+                    return fail(self);
+                };
+                if !stc_values::is_bit_string(a) || !stc_values::is_bit_string(b) {
+                    return fail(self);
+                }
+                let Some(c) = self.unify(l, a, r, b) else {
+                    return fail(self);
+                };
+                Some((self.types.elem(c), Some(c)))
+            }
+            BinaryOp::Pow => {
+                let (Some(a), Some(b)) = (self.types.numeric(lt), self.types.numeric(rt)) else {
+                    return fail(self);
+                };
+                if !stc_values::is_real(a) {
+                    let lspan = self.ast.expr(l).span;
+                    let msg = format!(
+                        "the base of `**` must be REAL or LREAL, not {}",
+                        self.tname(lt)
+                    );
+                    self.emit(Diagnostic::new(Code::E0201, lspan, msg).with_help(format!(
+                        "convert it, for example with {}_TO_LREAL(...)",
+                        a.name()
+                    )));
+                    return None;
+                }
+                if !stc_values::in_family(stc_syntax::token::GenericType::AnyNum, b) {
+                    return fail(self);
+                }
+                Some((self.types.elem(a), Some(a)))
+            }
+            _ => {
+                let (Some(a), Some(b)) = (self.types.numeric(lt), self.types.numeric(rt)) else {
+                    return fail(self);
+                };
+                let num = |t: E| stc_values::in_family(stc_syntax::token::GenericType::AnyNum, t);
+                if num(a) && num(b) {
+                    if op == BinaryOp::Mod
+                        && (!stc_values::is_integer(a) || !stc_values::is_integer(b))
+                    {
+                        return fail(self);
+                    }
+                    let Some(c) = self.unify(l, a, r, b) else {
+                        return fail(self);
+                    };
+                    return Some((self.types.elem(c), Some(c)));
+                }
+                // Time arithmetic.
+                let res = match (op, a, b) {
+                    (BinaryOp::Add | BinaryOp::Sub, E::Time, E::Time) => E::Time,
+                    (BinaryOp::Add | BinaryOp::Sub, E::Ltime, E::Ltime) => E::Ltime,
+                    (BinaryOp::Add | BinaryOp::Sub, E::Tod, E::Time) => E::Tod,
+                    (BinaryOp::Add | BinaryOp::Sub, E::Ltod, E::Ltime) => E::Ltod,
+                    (BinaryOp::Add | BinaryOp::Sub, E::Dt, E::Time) => E::Dt,
+                    (BinaryOp::Add | BinaryOp::Sub, E::Ldt, E::Ltime) => E::Ldt,
+                    (BinaryOp::Sub, E::Date, E::Date)
+                    | (BinaryOp::Sub, E::Tod, E::Tod)
+                    | (BinaryOp::Sub, E::Dt, E::Dt) => E::Time,
+                    (BinaryOp::Sub, E::Ldate, E::Ldate)
+                    | (BinaryOp::Sub, E::Ltod, E::Ltod)
+                    | (BinaryOp::Sub, E::Ldt, E::Ldt) => E::Ltime,
+                    (BinaryOp::Mul | BinaryOp::Div, E::Time | E::Ltime, n) if num(n) => a,
+                    (BinaryOp::Mul, n, E::Time | E::Ltime) if num(n) => b,
+                    _ => return fail(self),
+                };
+                Some((self.types.elem(res), None))
+            }
+        }
+    }
+
+    /// The common type of two operands, recording the implicit conversions;
+    /// under `--std iec2` mixing types is an error.
+    fn unify(&mut self, l: ExprId, a: ElemType, r: ExprId, b: ElemType) -> Option<ElemType> {
+        if a == b {
+            return Some(a);
+        }
+        let c = stc_values::common_type(a, b)?;
+        for (e, t) in [(l, a), (r, b)] {
+            if t != c {
+                if self.opts.iec2 {
+                    let span = self.ast.expr(e).span;
+                    let msg = format!(
+                        "implicit conversion from {} to {} is not allowed with --std iec2",
+                        t.name(),
+                        c.name()
+                    );
+                    self.emit(Diagnostic::new(Code::E0302, span, msg).with_help(format!(
+                        "use {}_TO_{}(...)",
+                        t.name(),
+                        c.name()
+                    )));
+                    return None;
+                }
+                let ct = self.types.elem(c);
+                self.coercions.insert(e, ct);
+            }
+        }
+        Some(c)
+    }
+
+    // ----- conversions ----------------------------------------------------------
+
+    /// Checks that a value of type `from` may be stored where `to` is
+    /// expected, recording an implicit conversion. `what` describes the
+    /// target for messages.
+    pub(crate) fn coerce(
+        &mut self,
+        e: ExprId,
+        from: TypeId,
+        to: TypeId,
+        ctx: Ctx,
+        what: &str,
+    ) -> bool {
+        let span = self.ast.expr(e).span;
+        if from != to && self.instance_as_value(e, from) {
+            return false;
+        }
+        match self.types.compat(from, to, self.opts.iec2) {
+            Compat::Same => true,
+            Compat::Widen => {
+                self.coercions.insert(e, to);
+                true
+            }
+            Compat::Narrow => {
+                let (f, t) = (self.tname(from), self.tname(to));
+                let code = if ctx == Ctx::Init {
+                    Code::E0208
+                } else {
+                    Code::E0302
+                };
+                let msg = if self.opts.iec2
+                    && self
+                        .types
+                        .numeric(from)
+                        .zip(self.types.numeric(to))
+                        .is_some_and(|(a, b)| stc_values::implicit_widening(a, b))
+                {
+                    format!("implicit conversion from {f} to {t} is not allowed with --std iec2")
+                } else {
+                    format!("implicit conversion from {f} to {t} may lose information")
+                };
+                let mut d = Diagnostic::new(code, span, msg).with_label(format!("this is {f}"));
+                if let (Some(a), Some(b)) = (self.types.numeric(from), self.types.numeric(to)) {
+                    d = d.with_help(format!(
+                        "convert explicitly with {}_TO_{}(...)",
+                        a.name(),
+                        b.name()
+                    ));
+                }
+                self.emit(d);
+                false
+            }
+            Compat::Incompatible => {
+                let (f, t) = (self.tname(from), self.tname(to));
+                let (code, msg) = match ctx {
+                    Ctx::Assign => (
+                        Code::E0301,
+                        format!("cannot assign a value of type {f} to {what} of type {t}"),
+                    ),
+                    Ctx::Init => (
+                        Code::E0208,
+                        format!("a value of type {f} cannot initialise {what} of type {t}"),
+                    ),
+                    Ctx::Arg => (Code::E0407, format!("{what} expects {t}, not {f}")),
+                };
+                let mut d = Diagnostic::new(code, span, msg).with_label(format!("this is {f}"));
+                if let (Some(a), Some(b)) = (self.types.scalar(from), self.types.scalar(to)) {
+                    let name = format!("{}_TO_{}", a.name(), b.name());
+                    if stc_values::lookup(&name).is_some() {
+                        d = d.with_help(format!("use {name}(...) to convert explicitly"));
+                    }
+                }
+                self.emit(d);
+                false
+            }
+        }
+    }
+
+    pub(crate) fn coerce_init(&mut self, e: ExprId, from: TypeId, to: TypeId) -> bool {
+        self.coerce(e, from, to, Ctx::Init, "a variable")
+    }
+
+    /// E0409: a function block instance where a value is needed.
+    pub(crate) fn instance_as_value(&mut self, e: ExprId, t: TypeId) -> bool {
+        if !matches!(self.types.kind(t), TypeKind::Fb(_)) {
+            return false;
+        }
+        let span = self.ast.expr(e).span;
+        self.emit(
+            Diagnostic::new(
+                Code::E0409,
+                span,
+                "a function block instance is not a value",
+            )
+            .with_label("function block instance")
+            .with_help("read one of its outputs, for example `inst.Q`"),
+        );
+        true
+    }
+
+    /// A constant of type `from` as a value of type `to` (after an implicit
+    /// conversion).
+    pub(crate) fn convert_const(&self, v: &Value, from: TypeId, to: TypeId) -> Option<Value> {
+        match (self.types.scalar(from), self.types.scalar(to)) {
+            (Some(a), Some(b))
+                if a != b && !matches!(self.types.kind(to), TypeKind::Enum { .. }) =>
+            {
+                stc_values::convert(a, b, v).ok()
+            }
+            _ => Some(v.clone()),
+        }
+    }
+
+    /// E0702: a constant outside the subrange it is stored in.
+    pub(crate) fn check_subrange(&mut self, v: &Option<Value>, ty: TypeId, span: Span) -> bool {
+        if let (TypeKind::Subrange { lo, hi, .. }, Some(Value::Int(x))) = (self.types.kind(ty), v) {
+            if x < lo || x > hi {
+                let msg = format!(
+                    "{x} is outside the subrange {lo}..{hi} of {}",
+                    self.tname(ty)
+                );
+                self.emit(
+                    Diagnostic::new(Code::E0702, span, msg).with_label("out of the subrange"),
+                );
+                return false;
+            }
+        }
+        true
+    }
+}
+
+pub(crate) fn bin_op(op: BinaryOp) -> BinOp {
+    match op {
+        BinaryOp::Or => BinOp::Or,
+        BinaryOp::Xor => BinOp::Xor,
+        BinaryOp::And => BinOp::And,
+        BinaryOp::Eq => BinOp::Eq,
+        BinaryOp::Ne => BinOp::Ne,
+        BinaryOp::Lt => BinOp::Lt,
+        BinaryOp::Le => BinOp::Le,
+        BinaryOp::Gt => BinOp::Gt,
+        BinaryOp::Ge => BinOp::Ge,
+        BinaryOp::Add => BinOp::Add,
+        BinaryOp::Sub => BinOp::Sub,
+        BinaryOp::Mul => BinOp::Mul,
+        BinaryOp::Div => BinOp::Div,
+        BinaryOp::Mod => BinOp::Mod,
+        BinaryOp::Pow => BinOp::Pow,
+    }
+}
+
+pub(crate) fn show_value(v: &Value) -> String {
+    match v {
+        Value::Bool(b) => if *b { "TRUE" } else { "FALSE" }.into(),
+        Value::Int(i) => i.to_string(),
+        Value::Real(r) => stc_syntax::literal::format_real(*r),
+        Value::Str(s) => format!("'{}'", String::from_utf8_lossy(s)),
+        Value::WStr(s) => format!("\"{}\"", String::from_utf16_lossy(s)),
+    }
+}

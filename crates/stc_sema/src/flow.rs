@@ -1,0 +1,442 @@
+//! Checks across a whole body or the whole project: unused variables, names
+//! hiding globals, a function's result on every path, evaluation order of
+//! arguments, externals against globals, and recursion.
+
+use rustc_hash::{FxHashMap, FxHashSet};
+use stc_diagnostics::{Code, Diagnostic, Span};
+use stc_syntax::ast::{Arg, ArgKind, ExprId, ExprKind, Item, Pou, PouKind, Stmt, StmtKind};
+
+use crate::analyzer::{GlobalName, Scope, Sema};
+use crate::types::TypeKind;
+use crate::{BoundArgKind, PouId, Res, Section, VarId};
+
+impl<'a> Sema<'a> {
+    /// The warnings of one POU, after its body is checked.
+    pub(crate) fn pou_warnings(&mut self, p: PouId, pou: &'a Pou) {
+        if self.pous[p.0 as usize].is_std {
+            return;
+        }
+        let vars = self.pous[p.0 as usize].vars.clone();
+        for (i, v) in vars.iter().enumerate() {
+            let id = VarId(i as u32);
+            let shown = self.spelled(v.name, v.span);
+            if matches!(v.section, Section::Var | Section::Temp) && !self.used.contains(&(p, id)) {
+                self.emit(
+                    Diagnostic::new(Code::W0104, v.span, format!("unused variable `{shown}`"))
+                        .with_label("declared but never used"),
+                );
+            }
+            if matches!(
+                v.section,
+                Section::External | Section::Result | Section::Global
+            ) {
+                continue;
+            }
+            let hidden = if self.globals.iter().any(|g| g.var.name == v.name) {
+                Some("a global variable")
+            } else {
+                match self.names.get(&v.name).copied() {
+                    Some(GlobalName::Type(_)) => Some("a data type"),
+                    Some(GlobalName::Pou(q)) if !self.pous[q.0 as usize].is_std => {
+                        Some(match self.pous[q.0 as usize].kind {
+                            PouKind::Function => "a function",
+                            PouKind::FunctionBlock => "a function block type",
+                            PouKind::Program => "a program",
+                        })
+                    }
+                    _ => None,
+                }
+            };
+            if let Some(what) = hidden {
+                self.emit(
+                    Diagnostic::new(
+                        Code::W0109,
+                        v.span,
+                        format!("`{shown}` hides {what} of the same name"),
+                    )
+                    .with_label(format!("hides {what}")),
+                );
+            }
+        }
+        if pou.kind == PouKind::Function && pou.return_type.is_some() {
+            let mut unassigned_return = false;
+            let end = self.assigns_result(&pou.body, p, false, &mut unassigned_return);
+            if !end || unassigned_return {
+                let name = self.spelled(pou.name.sym, pou.name.span);
+                self.emit(
+                    Diagnostic::new(
+                        Code::W0106,
+                        pou.name.span,
+                        format!("the result of `{name}` is not assigned on every path"),
+                    )
+                    .with_label("may return its type's initial value")
+                    .with_help(format!(
+                        "assign `{name} := ...` on every path, or before the first RETURN"
+                    )),
+                );
+            }
+        }
+    }
+
+    /// Whether the function result is assigned at the end of `list`, given
+    /// that it is `assigned` at its start; sets `bad_return` if some RETURN
+    /// is reached with the result unassigned.
+    fn assigns_result(
+        &self,
+        list: &'a [Stmt],
+        p: PouId,
+        mut assigned: bool,
+        bad_return: &mut bool,
+    ) -> bool {
+        for s in list {
+            match &s.kind {
+                StmtKind::Assign { target, .. } if self.is_result(p, *target) => assigned = true,
+                StmtKind::Call(e) => {
+                    if let Some(call) = self.calls.get(e) {
+                        for a in &call.args {
+                            match a.kind {
+                                BoundArgKind::Output { target, .. }
+                                | BoundArgKind::InOut(target)
+                                    if self.is_result(p, target) =>
+                                {
+                                    assigned = true
+                                }
+                                _ => {}
+                            }
+                        }
+                    }
+                }
+                StmtKind::If {
+                    branches,
+                    else_body,
+                } => {
+                    let mut all = else_body.is_some();
+                    for b in branches {
+                        all &= self.assigns_result(&b.body, p, assigned, bad_return);
+                    }
+                    if let Some(e) = else_body {
+                        all &= self.assigns_result(e, p, assigned, bad_return);
+                    }
+                    assigned |= all;
+                }
+                StmtKind::Case {
+                    arms, else_body, ..
+                } => {
+                    let mut all = else_body.is_some();
+                    for a in arms {
+                        all &= self.assigns_result(&a.body, p, assigned, bad_return);
+                    }
+                    if let Some(e) = else_body {
+                        all &= self.assigns_result(e, p, assigned, bad_return);
+                    }
+                    assigned |= all;
+                }
+                StmtKind::For { body, .. } | StmtKind::While { body, .. } => {
+                    self.assigns_result(body, p, assigned, bad_return);
+                }
+                StmtKind::Repeat { body, .. } => {
+                    assigned = self.assigns_result(body, p, assigned, bad_return);
+                }
+                StmtKind::Return => {
+                    if !assigned {
+                        *bad_return = true;
+                    }
+                    return true;
+                }
+                StmtKind::Exit | StmtKind::Continue => return assigned,
+                _ => {}
+            }
+        }
+        assigned
+    }
+
+    fn is_result(&self, p: PouId, target: ExprId) -> bool {
+        self.root_var(target)
+            .is_some_and(|v| self.pous[p.0 as usize].var(v).section == Section::Result)
+    }
+
+    /// W0101: a variable written by one argument (through `=>` or a
+    /// VAR_IN_OUT of a nested call) and read by another.
+    pub(crate) fn check_eval_order(&mut self, args: &[Arg], _scope: Scope, span: Span) {
+        if args.len() < 2 {
+            return;
+        }
+        let mut effects = Vec::with_capacity(args.len());
+        for a in args {
+            let mut reads = FxHashSet::default();
+            let mut writes = FxHashSet::default();
+            match &a.kind {
+                ArgKind::Positional(v) | ArgKind::Input { value: v, .. } => {
+                    self.effects(*v, &mut reads, &mut writes)
+                }
+                // The call's own outputs are written after it returns.
+                ArgKind::Output { .. } => {}
+            }
+            effects.push((reads, writes));
+        }
+        for (i, (_, w)) in effects.iter().enumerate() {
+            for (j, (r, _)) in effects.iter().enumerate() {
+                if i != j && w.iter().any(|v| r.contains(v)) {
+                    self.emit(
+                        Diagnostic::new(Code::W0101, span, "the result of this call depends on the order its arguments are evaluated in")
+                            .with_secondary(args[i].span, "this argument writes a variable")
+                            .with_secondary(args[j].span, "that this argument reads")
+                            .with_note("stc evaluates arguments left to right; other tools may not"),
+                    );
+                    return;
+                }
+            }
+        }
+    }
+
+    fn effects(&self, e: ExprId, reads: &mut FxHashSet<VarId>, writes: &mut FxHashSet<VarId>) {
+        match &self.ast.expr(e).kind {
+            ExprKind::Name(_) => {
+                if let Some(Res::Var(v)) = self.resolutions.get(&e) {
+                    reads.insert(*v);
+                }
+            }
+            ExprKind::Member { base, .. } | ExprKind::PartialAccess { base, .. } => {
+                self.effects(*base, reads, writes)
+            }
+            ExprKind::Index { base, indices } => {
+                self.effects(*base, reads, writes);
+                for i in indices.iter() {
+                    self.effects(*i, reads, writes);
+                }
+            }
+            ExprKind::Unary { operand, .. } => self.effects(*operand, reads, writes),
+            ExprKind::Binary { lhs, rhs, .. } => {
+                self.effects(*lhs, reads, writes);
+                self.effects(*rhs, reads, writes);
+            }
+            ExprKind::Paren(i) => self.effects(*i, reads, writes),
+            ExprKind::Call { args, .. } => {
+                let bound = self.calls.get(&e);
+                for a in args.iter() {
+                    match &a.kind {
+                        ArgKind::Output { target, .. } => {
+                            if let Some(v) = self.root_var(*target) {
+                                writes.insert(v);
+                            }
+                        }
+                        ArgKind::Positional(v) | ArgKind::Input { value: v, .. } => {
+                            let in_out = bound.is_some_and(|c| {
+                                c.args
+                                    .iter()
+                                    .any(|b| matches!(b.kind, BoundArgKind::InOut(x) if x == *v))
+                            });
+                            if in_out {
+                                if let Some(r) = self.root_var(*v) {
+                                    writes.insert(r);
+                                }
+                            }
+                            self.effects(*v, reads, writes);
+                        }
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// E0505/E0506: every VAR_EXTERNAL has a matching VAR_GLOBAL.
+    pub(crate) fn check_externals(&mut self) {
+        for pi in 0..self.pous.len() {
+            if self.pous[pi].is_std {
+                continue;
+            }
+            let p = PouId(pi as u32);
+            let vars: Vec<(VarId, crate::VarDef)> = self.pous[pi]
+                .vars
+                .iter()
+                .enumerate()
+                .filter(|(_, v)| v.section == Section::External)
+                .map(|(i, v)| (VarId(i as u32), v.clone()))
+                .collect();
+            for (_, v) in vars {
+                let shown = self.sym_name(v.name);
+                let candidates: Vec<crate::GlobalId> = self
+                    .globals
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, g)| g.var.name == v.name)
+                    .map(|(i, _)| crate::GlobalId(i as u32))
+                    .collect();
+                if candidates.is_empty() {
+                    self.emit(
+                        Diagnostic::new(Code::E0505, v.span, format!("no VAR_GLOBAL declares `{shown}`"))
+                            .with_label("external without a global")
+                            .with_help(format!("declare `{shown}` in a VAR_GLOBAL of the configuration that runs this POU")),
+                    );
+                    continue;
+                }
+                // Each configuration that instantiates the program must see it.
+                let mut reported_missing = false;
+                for ci in 0..self.configs.len() {
+                    for ri in 0..self.configs[ci].resources.len() {
+                        let insts: Vec<Span> = self.configs[ci].resources[ri]
+                            .programs
+                            .iter()
+                            .filter(|i| i.pou == p)
+                            .map(|i| i.span)
+                            .collect();
+                        for span in insts {
+                            if self.config_global(v.name, ci, Some(ri)).is_none()
+                                && !reported_missing
+                            {
+                                reported_missing = true;
+                                self.emit(
+                                    Diagnostic::new(Code::E0505, v.span, format!("no VAR_GLOBAL declares `{shown}` in the configuration that runs this POU"))
+                                        .with_secondary(span, "instantiated here"),
+                                );
+                            }
+                        }
+                    }
+                }
+                for g in candidates {
+                    let gd = self.globals[g.0 as usize].var.clone();
+                    let same = self.types.compat(gd.ty, v.ty, false) == crate::Compat::Same
+                        && self.types.compat(v.ty, gd.ty, false) == crate::Compat::Same;
+                    if !same {
+                        let msg = format!(
+                            "`{shown}` is declared {} here but {} in VAR_GLOBAL",
+                            self.tname(v.ty),
+                            self.tname(gd.ty)
+                        );
+                        self.emit(
+                            Diagnostic::new(Code::E0506, v.span, msg)
+                                .with_secondary(gd.span, "the global"),
+                        );
+                        break;
+                    }
+                    if gd.constant && !v.constant {
+                        self.emit(
+                            Diagnostic::new(Code::E0506, v.span, format!("`{shown}` is a CONSTANT global: declare it in VAR_EXTERNAL CONSTANT"))
+                                .with_secondary(gd.span, "the global"),
+                        );
+                        break;
+                    }
+                }
+            }
+        }
+    }
+
+    /// E0503: a cycle of calls (or of instances containing themselves).
+    pub(crate) fn check_recursion(&mut self) {
+        let mut edges: FxHashMap<PouId, Vec<(PouId, Span)>> = FxHashMap::default();
+        for &(a, b, s) in &self.call_edges {
+            edges.entry(a).or_default().push((b, s));
+        }
+        for (pi, pou) in self.pous.iter().enumerate() {
+            if let Item::Pou(ast_pou) = &self.ast.items[pou.item] {
+                let _ = ast_pou;
+            }
+            for v in &pou.vars {
+                if v.section == Section::External || v.section == Section::InOut {
+                    continue;
+                }
+                if let TypeKind::Fb(q) = self.types.kind(v.ty) {
+                    edges
+                        .entry(PouId(pi as u32))
+                        .or_default()
+                        .push((*q, v.span));
+                }
+            }
+        }
+        // Tarjan's strongly connected components.
+        let n = self.pous.len();
+        let mut index = vec![usize::MAX; n];
+        let mut low = vec![0; n];
+        let mut on_stack = vec![false; n];
+        let mut stack = Vec::new();
+        let mut next = 0;
+        let mut sccs: Vec<Vec<usize>> = Vec::new();
+        for start in 0..n {
+            if index[start] != usize::MAX {
+                continue;
+            }
+            // Iterative DFS: (node, next edge position).
+            let mut dfs = vec![(start, 0usize)];
+            index[start] = next;
+            low[start] = next;
+            next += 1;
+            stack.push(start);
+            on_stack[start] = true;
+            while let Some(&mut (v, ref mut ei)) = dfs.last_mut() {
+                let succ = edges
+                    .get(&PouId(v as u32))
+                    .map(|e| e.as_slice())
+                    .unwrap_or(&[]);
+                if *ei < succ.len() {
+                    let w = succ[*ei].0 .0 as usize;
+                    *ei += 1;
+                    if index[w] == usize::MAX {
+                        index[w] = next;
+                        low[w] = next;
+                        next += 1;
+                        stack.push(w);
+                        on_stack[w] = true;
+                        dfs.push((w, 0));
+                    } else if on_stack[w] {
+                        low[v] = low[v].min(index[w]);
+                    }
+                } else {
+                    dfs.pop();
+                    if let Some(&(parent, _)) = dfs.last() {
+                        low[parent] = low[parent].min(low[v]);
+                    }
+                    if low[v] == index[v] {
+                        let mut comp = Vec::new();
+                        while let Some(w) = stack.pop() {
+                            on_stack[w] = false;
+                            comp.push(w);
+                            if w == v {
+                                break;
+                            }
+                        }
+                        sccs.push(comp);
+                    }
+                }
+            }
+        }
+        for comp in sccs {
+            let members: FxHashSet<usize> = comp.iter().copied().collect();
+            let cyclic = comp.len() > 1
+                || edges
+                    .get(&PouId(comp[0] as u32))
+                    .is_some_and(|e| e.iter().any(|(q, _)| q.0 as usize == comp[0]));
+            if !cyclic {
+                continue;
+            }
+            // Report once, in the POU that comes last in the sources.
+            let last = *comp
+                .iter()
+                .max_by_key(|&&i| self.pous[i].span.lo)
+                .unwrap_or(&comp[0]);
+            let Some(&(_, span)) = edges
+                .get(&PouId(last as u32))
+                .and_then(|e| e.iter().find(|(q, _)| members.contains(&(q.0 as usize))))
+            else {
+                continue;
+            };
+            let names: Vec<String> = comp
+                .iter()
+                .rev()
+                .map(|&i| format!("`{}`", self.sym_name(self.pous[i].name)))
+                .collect();
+            let msg = if comp.len() == 1 {
+                format!("`{}` calls itself", self.sym_name(self.pous[last].name))
+            } else {
+                format!("recursion between {}", names.join(", "))
+            };
+            self.emit(
+                Diagnostic::new(Code::E0503, span, msg)
+                    .with_label("this closes the cycle")
+                    .with_note(
+                        "IEC 61131-3 does not allow recursion: memory is allocated statically",
+                    ),
+            );
+        }
+    }
+}

@@ -1,0 +1,297 @@
+//! Semantic analysis: from a syntax tree to a typed, checked program model.
+//!
+//! [`analyze`] resolves every name, gives every expression a type (with the
+//! implicit conversions made explicit in [`Analysis::coercions`]), folds
+//! constants with the exact run-time semantics of `stc_values`, and reports
+//! every error and warning of `docs/diagnostics.md`. The result is data that
+//! later phases (the IR, a language server) query; nothing here prints.
+//!
+//! One root cause gives one diagnostic: an expression whose error is already
+//! reported gets the poisoned type [`TypeId::ERROR`], which is compatible with
+//! everything, so no diagnostic ever follows from another.
+//!
+//! The standard function blocks (TON, CTU, ...) are written in ST in the
+//! [`prelude`], which the driver parses together with the user's files, so
+//! every back end gets their exact semantics from one source.
+
+mod analyzer;
+mod calls;
+mod config;
+mod decls;
+mod expr;
+mod flow;
+pub mod prelude;
+mod stmt;
+pub mod types;
+
+use rustc_hash::FxHashMap;
+use stc_diagnostics::{Diagnostic, SourceMap, Span};
+use stc_syntax::ast::{Ast, Edge, ExprId, PouKind};
+use stc_syntax::literal::DirectAddress;
+use stc_syntax::{Interner, Symbol};
+use stc_values::{Intrinsic, Value};
+
+pub use types::{Compat, InitValue, TypeId, TypeKind, TypeTable};
+
+/// Index of a POU in [`Analysis::pous`].
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord)]
+pub struct PouId(pub u32);
+
+/// Index of a variable in its POU's [`PouDef::vars`].
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord)]
+pub struct VarId(pub u32);
+
+/// Index of a global variable in [`Analysis::globals`].
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord)]
+pub struct GlobalId(pub u32);
+
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Options {
+    /// `--std iec2`: no implicit conversions.
+    pub iec2: bool,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
+pub enum Section {
+    Input,
+    Output,
+    InOut,
+    Var,
+    Temp,
+    External,
+    /// VAR_GLOBAL declared inside a PROGRAM.
+    Global,
+    /// The result variable of a FUNCTION (named like the function).
+    Result,
+}
+
+#[derive(Clone, Debug)]
+pub struct VarDef {
+    pub name: Symbol,
+    pub span: Span,
+    pub section: Section,
+    pub ty: TypeId,
+    /// The evaluated initial value (explicit, or from the declared type).
+    pub init: Option<InitValue>,
+    pub constant: bool,
+    pub retain: bool,
+    pub location: Option<DirectAddress>,
+    pub edge: Option<Edge>,
+}
+
+#[derive(Clone, Debug)]
+pub struct PouDef {
+    pub kind: PouKind,
+    pub name: Symbol,
+    pub span: Span,
+    pub name_span: Span,
+    /// Index of the POU in [`Ast::items`].
+    pub item: usize,
+    pub vars: Vec<VarDef>,
+    /// The function result type (`None` for function blocks, programs and
+    /// functions without a result).
+    pub return_type: Option<TypeId>,
+    /// Part of the standard library prelude.
+    pub is_std: bool,
+    pub var_index: FxHashMap<Symbol, VarId>,
+}
+
+impl PouDef {
+    pub fn var(&self, v: VarId) -> &VarDef {
+        &self.vars[v.0 as usize]
+    }
+
+    pub fn lookup(&self, name: Symbol) -> Option<VarId> {
+        self.var_index.get(&name).copied()
+    }
+
+    /// Inputs and in-outs in declaration order: the order of positional
+    /// arguments.
+    pub fn positional_params(&self) -> impl Iterator<Item = VarId> + '_ {
+        self.vars
+            .iter()
+            .enumerate()
+            .filter(|(_, v)| matches!(v.section, Section::Input | Section::InOut))
+            .map(|(i, _)| VarId(i as u32))
+    }
+}
+
+/// Where a global variable is declared.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum GlobalOwner {
+    /// A VAR_GLOBAL block outside any configuration.
+    TopLevel,
+    Config(usize),
+    Resource(usize, usize),
+}
+
+#[derive(Clone, Debug)]
+pub struct GlobalDef {
+    pub var: VarDef,
+    pub owner: GlobalOwner,
+}
+
+#[derive(Clone, Debug)]
+pub struct TaskDef {
+    pub name: Symbol,
+    pub span: Span,
+    /// The event input of an event task.
+    pub single: Option<DataRef>,
+    /// Period in nanoseconds.
+    pub interval: Option<i64>,
+    pub priority: u32,
+}
+
+/// A value source or sink in a configuration: a global or a direct variable.
+#[derive(Clone, Debug)]
+pub enum DataRef {
+    Global(GlobalId),
+    Direct(DirectAddress),
+    Const(Value),
+}
+
+#[derive(Clone, Debug)]
+pub struct ProgramInstDef {
+    pub name: Symbol,
+    pub span: Span,
+    pub pou: PouId,
+    /// Index into the resource's tasks.
+    pub task: Option<usize>,
+    pub inputs: Vec<(VarId, DataRef)>,
+    pub outputs: Vec<(VarId, DataRef)>,
+}
+
+#[derive(Clone, Debug)]
+pub struct ResourceDef {
+    pub name: Option<Symbol>,
+    pub span: Span,
+    pub globals: Vec<GlobalId>,
+    pub tasks: Vec<TaskDef>,
+    pub programs: Vec<ProgramInstDef>,
+}
+
+#[derive(Clone, Debug)]
+pub struct ConfigDef {
+    pub name: Symbol,
+    pub span: Span,
+    pub globals: Vec<GlobalId>,
+    pub resources: Vec<ResourceDef>,
+}
+
+/// What a name or member expression refers to.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Res {
+    /// A variable of the POU whose body is being analysed.
+    Var(VarId),
+    /// An enumeration value: its type and its index in the type's values.
+    EnumValue(TypeId, u32),
+    /// A member of a struct (field index) or of an FB instance (variable).
+    Field(u32),
+    FbMember(PouId, VarId),
+    /// A global of a configuration (only in configuration scope).
+    Global(GlobalId),
+}
+
+/// A resolved call.
+#[derive(Clone, Debug)]
+pub struct CallInfo {
+    pub target: CallTarget,
+    pub args: Vec<BoundArg>,
+}
+
+#[derive(Clone, Debug)]
+pub enum CallTarget {
+    /// A user (or prelude) FUNCTION.
+    Function(PouId),
+    /// A call of the function block instance that the callee expression denotes.
+    FbInstance(PouId),
+    /// A standard function with the concrete types it was resolved at: one
+    /// per argument (after implicit conversion) and the result.
+    Std {
+        intrinsic: Intrinsic,
+        arg_types: Vec<TypeId>,
+        ret: TypeId,
+    },
+    /// The task clock (`CUR_TIME()`).
+    CurTime,
+}
+
+#[derive(Clone, Debug)]
+pub struct BoundArg {
+    /// The parameter: a variable of the callee POU, or the position of a
+    /// standard function's input.
+    pub param: u32,
+    pub kind: BoundArgKind,
+}
+
+#[derive(Clone, Debug)]
+pub enum BoundArgKind {
+    Input(ExprId),
+    InOut(ExprId),
+    Output { target: ExprId, negated: bool },
+}
+
+/// The result of analysis.
+pub struct Analysis {
+    pub types: TypeTable,
+    pub pous: Vec<PouDef>,
+    pub globals: Vec<GlobalDef>,
+    pub configs: Vec<ConfigDef>,
+    /// The type of every expression, before any implicit conversion.
+    pub expr_types: Vec<TypeId>,
+    /// Expressions converted implicitly, with the type they convert to.
+    pub coercions: FxHashMap<ExprId, TypeId>,
+    pub resolutions: FxHashMap<ExprId, Res>,
+    /// Folded constant values (of the expression's type, before coercion).
+    pub consts: FxHashMap<ExprId, Value>,
+    pub calls: FxHashMap<ExprId, CallInfo>,
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+impl Analysis {
+    pub fn pou(&self, p: PouId) -> &PouDef {
+        &self.pous[p.0 as usize]
+    }
+
+    pub fn global(&self, g: GlobalId) -> &GlobalDef {
+        &self.globals[g.0 as usize]
+    }
+
+    pub fn expr_type(&self, e: ExprId) -> TypeId {
+        self.expr_types
+            .get(e.index())
+            .copied()
+            .unwrap_or(TypeId::ERROR)
+    }
+
+    /// The type an expression has after its implicit conversion.
+    pub fn final_type(&self, e: ExprId) -> TypeId {
+        self.coercions
+            .get(&e)
+            .copied()
+            .unwrap_or_else(|| self.expr_type(e))
+    }
+
+    pub fn pou_by_name(&self, name: Symbol) -> Option<PouId> {
+        self.pous
+            .iter()
+            .position(|p| p.name == name)
+            .map(|i| PouId(i as u32))
+    }
+
+    pub fn has_errors(&self) -> bool {
+        self.diagnostics.iter().any(|d| d.is_error())
+    }
+}
+
+/// Analyses a parsed project. `prelude` is the span of the prelude file in
+/// the source map, if it was added: its POUs are the standard library.
+pub fn analyze(
+    ast: &Ast,
+    interner: &mut Interner,
+    sources: &SourceMap,
+    prelude: Option<Span>,
+    opts: Options,
+) -> Analysis {
+    analyzer::Sema::new(ast, interner, sources, prelude, opts).run()
+}

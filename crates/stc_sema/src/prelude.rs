@@ -1,0 +1,205 @@
+//! The standard function blocks, written in Structured Text.
+//!
+//! The driver parses this text together with the user's files (as the file
+//! `<stdlib>`), so the blocks are ordinary POUs to every later phase: their
+//! semantics (spec/semantics.md, "Standard function blocks") are written once
+//! and every back end runs exactly this code. Timers read the task clock with
+//! `CUR_TIME()`, which advances only between cycles.
+
+/// The name the prelude file has in the source map.
+pub const PRELUDE_NAME: &str = "<stdlib>";
+
+/// The source text of the prelude.
+pub fn source() -> String {
+    let mut s = String::from(FIXED);
+    for (suffix, ty, max, min) in [
+        ("", "INT", "32767", "-32768"),
+        ("_INT", "INT", "32767", "-32768"),
+        ("_DINT", "DINT", "2147483647", "-2147483648"),
+        (
+            "_LINT",
+            "LINT",
+            "9223372036854775807",
+            "-9223372036854775808",
+        ),
+        ("_UDINT", "UDINT", "4294967295", "0"),
+        ("_ULINT", "ULINT", "18446744073709551615", "0"),
+    ] {
+        s.push_str(&counters(suffix, ty, max, min));
+    }
+    for (suffix, ty) in [("", "TIME"), ("_LTIME", "LTIME")] {
+        s.push_str(&timers(suffix, ty));
+    }
+    s
+}
+
+const FIXED: &str = r#"
+FUNCTION_BLOCK SR
+VAR_INPUT S1 : BOOL; R : BOOL; END_VAR
+VAR_OUTPUT Q1 : BOOL; END_VAR
+    Q1 := S1 OR (NOT R AND Q1);
+END_FUNCTION_BLOCK
+
+FUNCTION_BLOCK RS
+VAR_INPUT S : BOOL; R1 : BOOL; END_VAR
+VAR_OUTPUT Q1 : BOOL; END_VAR
+    Q1 := NOT R1 AND (S OR Q1);
+END_FUNCTION_BLOCK
+
+FUNCTION_BLOCK R_TRIG
+VAR_INPUT CLK : BOOL; END_VAR
+VAR_OUTPUT Q : BOOL; END_VAR
+VAR M : BOOL; END_VAR
+    Q := CLK AND NOT M;
+    M := CLK;
+END_FUNCTION_BLOCK
+
+(* Q is TRUE for one call after CLK falls; a CLK that has never been TRUE
+   has not fallen. *)
+FUNCTION_BLOCK F_TRIG
+VAR_INPUT CLK : BOOL; END_VAR
+VAR_OUTPUT Q : BOOL; END_VAR
+VAR M : BOOL; END_VAR
+    Q := NOT CLK AND M;
+    M := CLK;
+END_FUNCTION_BLOCK
+"#;
+
+/// CTU, CTD and CTUD for one counter type: counters saturate at the limits
+/// of their type and never wrap.
+fn counters(suffix: &str, ty: &str, max: &str, min: &str) -> String {
+    format!(
+        r#"
+FUNCTION_BLOCK CTU{suffix}
+VAR_INPUT CU : BOOL; R : BOOL; PV : {ty}; END_VAR
+VAR_OUTPUT Q : BOOL; CV : {ty}; END_VAR
+VAR cu_prev : BOOL; END_VAR
+    IF R THEN
+        CV := 0;
+    ELSIF CU AND NOT cu_prev AND CV < {max} THEN
+        CV := CV + 1;
+    END_IF;
+    cu_prev := CU;
+    Q := CV >= PV;
+END_FUNCTION_BLOCK
+
+FUNCTION_BLOCK CTD{suffix}
+VAR_INPUT CD : BOOL; LD : BOOL; PV : {ty}; END_VAR
+VAR_OUTPUT Q : BOOL; CV : {ty}; END_VAR
+VAR cd_prev : BOOL; END_VAR
+    IF LD THEN
+        CV := PV;
+    ELSIF CD AND NOT cd_prev AND CV > {min} THEN
+        CV := CV - 1;
+    END_IF;
+    cd_prev := CD;
+    Q := CV <= 0;
+END_FUNCTION_BLOCK
+
+FUNCTION_BLOCK CTUD{suffix}
+VAR_INPUT CU : BOOL; CD : BOOL; R : BOOL; LD : BOOL; PV : {ty}; END_VAR
+VAR_OUTPUT QU : BOOL; QD : BOOL; CV : {ty}; END_VAR
+VAR cu_prev : BOOL; cd_prev : BOOL; up : BOOL; down : BOOL; END_VAR
+    up := CU AND NOT cu_prev;
+    down := CD AND NOT cd_prev;
+    cu_prev := CU;
+    cd_prev := CD;
+    IF R THEN
+        CV := 0;
+    ELSIF LD THEN
+        CV := PV;
+    ELSIF up AND NOT down THEN
+        IF CV < {max} THEN
+            CV := CV + 1;
+        END_IF;
+    ELSIF down AND NOT up THEN
+        IF CV > {min} THEN
+            CV := CV - 1;
+        END_IF;
+    END_IF;
+    QU := CV >= PV;
+    QD := CV <= 0;
+END_FUNCTION_BLOCK
+"#
+    )
+}
+
+/// TP, TON and TOF for TIME or LTIME.
+fn timers(suffix: &str, ty: &str) -> String {
+    let zero = if ty == "LTIME" { "LTIME#0s" } else { "T#0s" };
+    let now = if ty == "LTIME" {
+        "TIME_TO_LTIME(CUR_TIME())"
+    } else {
+        "CUR_TIME()"
+    };
+    format!(
+        r#"
+FUNCTION_BLOCK TP{suffix}
+VAR_INPUT IN : BOOL; PT : {ty}; END_VAR
+VAR_OUTPUT Q : BOOL; ET : {ty}; END_VAR
+VAR start : {ty}; pulsing : BOOL; in_prev : BOOL; END_VAR
+    IF IN AND NOT in_prev AND NOT pulsing THEN
+        start := {now};
+        pulsing := TRUE;
+    END_IF;
+    IF pulsing THEN
+        ET := {now} - start;
+        IF ET >= PT THEN
+            ET := PT;
+            pulsing := FALSE;
+        END_IF;
+    END_IF;
+    IF NOT pulsing AND NOT IN THEN
+        ET := {zero};
+    END_IF;
+    Q := pulsing;
+    in_prev := IN;
+END_FUNCTION_BLOCK
+
+FUNCTION_BLOCK TON{suffix}
+VAR_INPUT IN : BOOL; PT : {ty}; END_VAR
+VAR_OUTPUT Q : BOOL; ET : {ty}; END_VAR
+VAR start : {ty}; in_prev : BOOL; END_VAR
+    IF NOT IN THEN
+        Q := FALSE;
+        ET := {zero};
+    ELSE
+        IF NOT in_prev THEN
+            start := {now};
+        END_IF;
+        ET := {now} - start;
+        IF ET >= PT THEN
+            ET := PT;
+        END_IF;
+        Q := ET >= PT;
+    END_IF;
+    in_prev := IN;
+END_FUNCTION_BLOCK
+
+FUNCTION_BLOCK TOF{suffix}
+VAR_INPUT IN : BOOL; PT : {ty}; END_VAR
+VAR_OUTPUT Q : BOOL; ET : {ty}; END_VAR
+VAR start : {ty}; timing : BOOL; in_prev : BOOL; END_VAR
+    IF IN THEN
+        Q := TRUE;
+        ET := {zero};
+        timing := FALSE;
+    ELSE
+        IF in_prev THEN
+            start := {now};
+            timing := TRUE;
+        END_IF;
+        IF timing THEN
+            ET := {now} - start;
+            IF ET >= PT THEN
+                ET := PT;
+                timing := FALSE;
+            END_IF;
+            Q := ET < PT;
+        END_IF;
+    END_IF;
+    in_prev := IN;
+END_FUNCTION_BLOCK
+"#
+    )
+}

@@ -1,0 +1,358 @@
+//! Statements and POU bodies.
+
+use stc_diagnostics::{Code, Diagnostic, Span};
+use stc_syntax::ast::{CaseLabel, ExprKind, Pou, Stmt, StmtKind};
+use stc_syntax::token::ElemType;
+use stc_values::Value;
+
+use crate::analyzer::{Body, Scope, Sema};
+
+use crate::calls::Write;
+use crate::expr::Ctx;
+use crate::types::{TypeId, TypeKind};
+use crate::{PouId, Res};
+
+impl<'a> Sema<'a> {
+    pub(crate) fn check_body(&mut self, p: PouId, pou: &'a Pou) {
+        self.resolve_pou(p);
+        self.body = Body::default();
+        self.stmts(&pou.body, p);
+        self.pou_warnings(p, pou);
+    }
+
+    fn stmts(&mut self, list: &'a [Stmt], p: PouId) {
+        let mut ended: Option<&'static str> = None;
+        let mut reported = false;
+        for s in list {
+            if let Some(after) = ended {
+                if !reported && !matches!(s.kind, StmtKind::Empty) {
+                    reported = true;
+                    self.emit(
+                        Diagnostic::new(Code::W0105, s.span, "unreachable statement")
+                            .with_label(format!("this can never run: it comes after {after}")),
+                    );
+                }
+            }
+            self.stmt(s, p);
+            if ended.is_none() {
+                ended = match s.kind {
+                    StmtKind::Return => Some("RETURN"),
+                    StmtKind::Exit => Some("EXIT"),
+                    StmtKind::Continue => Some("CONTINUE"),
+                    _ => None,
+                };
+            }
+        }
+    }
+
+    fn stmt(&mut self, s: &'a Stmt, p: PouId) {
+        let scope = Scope::Pou(p);
+        match &s.kind {
+            StmtKind::Empty | StmtKind::Error => {}
+            StmtKind::Assign { target, value } => {
+                let tt = self.check_lvalue(*target, scope, Write::Assign);
+                let vt = self.check_expr(*value, Some(tt), scope);
+                if tt != TypeId::ERROR && vt != TypeId::ERROR {
+                    let what = self.target_name(*target);
+                    if self.coerce(*value, vt, tt, Ctx::Assign, &what) {
+                        let c = self
+                            .consts
+                            .get(value)
+                            .cloned()
+                            .and_then(|c| self.convert_const(&c, vt, tt));
+                        self.check_subrange(&c, tt, self.ast.expr(*value).span);
+                    }
+                }
+            }
+            StmtKind::Call(e) => match &self.ast.expr(*e).kind {
+                ExprKind::Call { callee, args } => {
+                    let t = self.call(*e, *callee, args, None, scope, true);
+                    self.set_type(*e, t);
+                }
+                _ => {
+                    self.check_expr(*e, None, scope);
+                }
+            },
+            StmtKind::If {
+                branches,
+                else_body,
+            } => {
+                for b in branches {
+                    self.condition(b.cond, scope, "IF");
+                    self.stmts(&b.body, p);
+                }
+                if let Some(e) = else_body {
+                    self.stmts(e, p);
+                }
+            }
+            StmtKind::Case {
+                selector,
+                arms,
+                else_body,
+            } => {
+                let st = self.check_expr(*selector, None, scope);
+                let sel_ok = st == TypeId::ERROR
+                    || self.types.is_integer(st)
+                    || matches!(self.types.kind(st), TypeKind::Enum { .. })
+                    || self
+                        .types
+                        .numeric(st)
+                        .is_some_and(|t| stc_values::is_bit_string(t) && t != ElemType::Bool);
+                if !sel_ok {
+                    let span = self.ast.expr(*selector).span;
+                    let msg = format!(
+                        "a CASE selector must be an integer or an enumeration, not {}",
+                        self.tname(st)
+                    );
+                    self.emit(Diagnostic::new(Code::E0203, span, msg));
+                }
+                let expected = if sel_ok { st } else { TypeId::ERROR };
+                let mut seen: Vec<(i128, i128, Span)> = Vec::new();
+                for arm in arms {
+                    for label in &arm.labels {
+                        let (lo, hi) = match label {
+                            CaseLabel::Value(v) => (*v, *v),
+                            CaseLabel::Range(a, b) => (*a, *b),
+                        };
+                        let mut vals = [None, None];
+                        for (k, e) in [lo, hi].into_iter().enumerate() {
+                            if k == 1 && lo == hi {
+                                vals[1] = vals[0];
+                                break;
+                            }
+                            vals[k] = self.case_label(e, expected, scope);
+                        }
+                        if let [Some(a), Some(b)] = vals {
+                            let span = self.ast.expr(lo).span.to(self.ast.expr(hi).span);
+                            if let Some(&(_, _, prev)) =
+                                seen.iter().find(|(x, y, _)| a <= *y && *x <= b)
+                            {
+                                self.emit(
+                                    Diagnostic::new(
+                                        Code::E0602,
+                                        span,
+                                        "this CASE label overlaps an earlier one",
+                                    )
+                                    .with_label("selects a value already selected")
+                                    .with_secondary(prev, "earlier label"),
+                                );
+                            } else {
+                                seen.push((a.min(b), a.max(b), span));
+                            }
+                        }
+                    }
+                    self.stmts(&arm.body, p);
+                }
+                if let Some(e) = else_body {
+                    self.stmts(e, p);
+                }
+            }
+            StmtKind::For {
+                var,
+                from,
+                to,
+                by,
+                body,
+            } => {
+                let var_ty = match self.pous[p.0 as usize].lookup(var.sym) {
+                    Some(v) => {
+                        self.used.insert((p, v));
+                        let vd = self.pous[p.0 as usize].var(v).clone();
+                        let shown = self.sym_name(vd.name);
+                        if !self.types.is_integer(vd.ty) && vd.ty != TypeId::ERROR {
+                            let msg = format!(
+                                "the FOR control variable `{shown}` must be an integer, not {}",
+                                self.tname(vd.ty)
+                            );
+                            self.emit(Diagnostic::new(Code::E0204, var.span, msg));
+                            TypeId::ERROR
+                        } else if vd.constant {
+                            self.error(
+                                Code::E0304,
+                                var.span,
+                                format!(
+                                    "`{shown}` is a constant and cannot be a FOR control variable"
+                                ),
+                            );
+                            TypeId::ERROR
+                        } else if self.body.for_vars.contains(&v) {
+                            self.error(Code::E0306, var.span, format!("`{shown}` is already the control variable of an enclosing FOR loop"));
+                            TypeId::ERROR
+                        } else {
+                            vd.ty
+                        }
+                    }
+                    None => {
+                        let shown = self.spelled(var.sym, var.span);
+                        self.error(
+                            Code::E0101,
+                            var.span,
+                            format!("undeclared variable `{shown}`"),
+                        );
+                        TypeId::ERROR
+                    }
+                };
+                for (e, what) in [(Some(*from), "start"), (Some(*to), "end"), (*by, "step")] {
+                    let Some(e) = e else { continue };
+                    let t = self.check_expr(e, Some(var_ty), scope);
+                    if t == TypeId::ERROR || var_ty == TypeId::ERROR {
+                        continue;
+                    }
+                    let ok = matches!(
+                        self.types.compat(t, var_ty, self.opts.iec2),
+                        crate::Compat::Same | crate::Compat::Widen
+                    );
+                    if !ok {
+                        let span = self.ast.expr(e).span;
+                        let msg = format!(
+                            "the FOR {what} is {}, but the control variable is {}",
+                            self.tname(t),
+                            self.tname(var_ty)
+                        );
+                        self.emit(Diagnostic::new(Code::E0204, span, msg));
+                    } else if t != var_ty {
+                        self.coercions.insert(e, var_ty);
+                    }
+                }
+                if let Some(b) = by {
+                    if matches!(self.consts.get(b), Some(Value::Int(0))) {
+                        let span = self.ast.expr(*b).span;
+                        self.emit(
+                            Diagnostic::new(
+                                Code::E0604,
+                                span,
+                                "a FOR loop with a step of zero never ends",
+                            )
+                            .with_label("zero step"),
+                        );
+                    }
+                }
+                let control = self.pous[p.0 as usize].lookup(var.sym);
+                self.body.loop_depth += 1;
+                if let Some(v) = control {
+                    self.body.for_vars.push(v);
+                }
+                self.stmts(body, p);
+                if control.is_some() {
+                    self.body.for_vars.pop();
+                }
+                self.body.loop_depth -= 1;
+            }
+            StmtKind::While { cond, body } => {
+                self.condition(*cond, scope, "WHILE");
+                self.body.loop_depth += 1;
+                self.stmts(body, p);
+                self.body.loop_depth -= 1;
+            }
+            StmtKind::Repeat { body, until } => {
+                self.body.loop_depth += 1;
+                self.stmts(body, p);
+                self.body.loop_depth -= 1;
+                self.condition(*until, scope, "UNTIL");
+            }
+            StmtKind::Exit | StmtKind::Continue => {
+                if self.body.loop_depth == 0 {
+                    let word = if matches!(s.kind, StmtKind::Exit) {
+                        "EXIT"
+                    } else {
+                        "CONTINUE"
+                    };
+                    self.emit(
+                        Diagnostic::new(Code::E0601, s.span, format!("{word} outside a loop"))
+                            .with_help("EXIT and CONTINUE work in FOR, WHILE and REPEAT loops; use RETURN to leave the POU"),
+                    );
+                }
+            }
+            StmtKind::Return => {}
+        }
+    }
+
+    /// A CASE label: a constant of the selector's type.
+    fn case_label(
+        &mut self,
+        e: stc_syntax::ast::ExprId,
+        sel: TypeId,
+        scope: Scope,
+    ) -> Option<i128> {
+        let t = self.check_expr(e, Some(sel), scope);
+        if t == TypeId::ERROR || sel == TypeId::ERROR {
+            return None;
+        }
+        let span = self.ast.expr(e).span;
+        let ok = matches!(
+            self.types.compat(t, sel, false),
+            crate::Compat::Same | crate::Compat::Widen
+        );
+        if !ok {
+            let msg = format!(
+                "this CASE label is {}, but the selector is {}",
+                self.tname(t),
+                self.tname(sel)
+            );
+            self.emit(Diagnostic::new(Code::E0203, span, msg));
+            return None;
+        }
+        match self.consts.get(&e) {
+            Some(Value::Int(v)) => Some(*v),
+            Some(_) => None,
+            None => {
+                self.emit(
+                    Diagnostic::new(Code::E0603, span, "a CASE label must be a constant")
+                        .with_help("use literals, enumeration values or VAR CONSTANT names"),
+                );
+                None
+            }
+        }
+    }
+
+    /// A BOOL condition; a constant one is a warning.
+    fn condition(&mut self, e: stc_syntax::ast::ExprId, scope: Scope, what: &str) {
+        let bool_ty = self.types.elem(ElemType::Bool);
+        let t = self.check_expr(e, Some(bool_ty), scope);
+        let span = self.ast.expr(e).span;
+        if t != TypeId::ERROR && !self.types.is_bool(t) {
+            let msg = format!(
+                "the condition of {what} must be BOOL, not {}",
+                self.tname(t)
+            );
+            self.emit(
+                Diagnostic::new(Code::E0202, span, msg)
+                    .with_label(format!("this is {}", self.tname(t))),
+            );
+            return;
+        }
+        if let Some(Value::Bool(b)) = self.consts.get(&e) {
+            let v = if *b { "TRUE" } else { "FALSE" };
+            self.emit(
+                Diagnostic::new(Code::W0108, span, format!("this condition is always {v}"))
+                    .with_label(format!("always {v}")),
+            );
+        }
+    }
+
+    /// How the target of an assignment is named in messages.
+    fn target_name(&self, e: stc_syntax::ast::ExprId) -> String {
+        let text = self.sources.slice(self.ast.expr(e).span);
+        if text.len() <= 40 {
+            format!("`{text}`")
+        } else {
+            "the target".into()
+        }
+    }
+
+    pub(crate) fn root_var(&self, mut e: stc_syntax::ast::ExprId) -> Option<crate::VarId> {
+        loop {
+            match &self.ast.expr(e).kind {
+                ExprKind::Member { base, .. }
+                | ExprKind::Index { base, .. }
+                | ExprKind::PartialAccess { base, .. } => e = *base,
+                ExprKind::Paren(i) => e = *i,
+                _ => break,
+            }
+        }
+        match self.resolutions.get(&e) {
+            Some(Res::Var(v)) => Some(*v),
+            _ => None,
+        }
+    }
+}

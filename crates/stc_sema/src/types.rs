@@ -1,0 +1,309 @@
+//! The type table: every type of a project, named by [`TypeId`].
+//!
+//! Equivalence follows spec/semantics.md (seed 001 section 3.1): a plain
+//! rename of a named type is that type (it resolves to the same `TypeId`);
+//! every STRUCT, ARRAY, enumeration or subrange declared by name is a new,
+//! distinct type; an anonymous ARRAY written in a declaration is compatible
+//! with any array of the same bounds and element type; STRING[n] of any
+//! lengths are compatible with each other.
+
+use std::fmt::Write;
+
+use stc_diagnostics::Span;
+use stc_syntax::token::ElemType;
+use stc_syntax::{Interner, Symbol};
+use stc_values::Value;
+
+use crate::PouId;
+
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord)]
+pub struct TypeId(pub u32);
+
+impl TypeId {
+    /// The poisoned type of an expression whose error is already reported:
+    /// compatible with everything, so one mistake gives one diagnostic.
+    pub const ERROR: TypeId = TypeId(0);
+    /// The "result" of a function without a return type.
+    pub const VOID: TypeId = TypeId(1);
+}
+
+pub const DEFAULT_STRING_LEN: u32 = 80;
+
+#[derive(Clone, PartialEq, Debug)]
+pub struct EnumValue {
+    pub name: Symbol,
+    pub value: i128,
+    pub span: Span,
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub struct Field {
+    pub name: Symbol,
+    pub ty: TypeId,
+    pub init: Option<InitValue>,
+    pub span: Span,
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub enum TypeKind {
+    Error,
+    Void,
+    Elem(ElemType),
+    String {
+        wide: bool,
+        len: u32,
+    },
+    Subrange {
+        base: ElemType,
+        lo: i128,
+        hi: i128,
+    },
+    Enum {
+        values: Vec<EnumValue>,
+        base: ElemType,
+    },
+    Array {
+        dims: Vec<(i128, i128)>,
+        elem: TypeId,
+    },
+    Struct {
+        fields: Vec<Field>,
+    },
+    /// An instance of a function block.
+    Fb(PouId),
+    /// A program type (only instantiated by configurations).
+    Program(PouId),
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub struct TypeInfo {
+    pub kind: TypeKind,
+    /// The declared name of a named type.
+    pub name: Option<Symbol>,
+    pub span: Option<Span>,
+}
+
+/// An evaluated initial value.
+#[derive(Clone, PartialEq, Debug)]
+pub enum InitValue {
+    Scalar(Value),
+    /// Every element of an array in order (row-major), after expanding
+    /// repetitions; elements not given keep their type's default (`None`).
+    Array(Vec<Option<InitValue>>),
+    /// Members given by name; the others keep their declared default.
+    Struct(Vec<(Symbol, InitValue)>),
+}
+
+pub struct TypeTable {
+    types: Vec<TypeInfo>,
+    strings: rustc_hash::FxHashMap<(bool, u32), TypeId>,
+}
+
+/// How a value of one type can be stored in another.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Compat {
+    /// Same type (or compatible without any conversion).
+    Same,
+    /// An implicit widening conversion (3rd edition).
+    Widen,
+    /// Numeric or bit-string types whose conversion may lose information.
+    Narrow,
+    Incompatible,
+}
+
+impl Default for TypeTable {
+    fn default() -> Self {
+        TypeTable::new()
+    }
+}
+
+impl TypeTable {
+    pub fn new() -> TypeTable {
+        let mut t = TypeTable {
+            types: Vec::new(),
+            strings: Default::default(),
+        };
+        t.add(TypeKind::Error, None, None);
+        t.add(TypeKind::Void, None, None);
+        for &e in ElemType::ALL {
+            t.add(TypeKind::Elem(e), None, None);
+        }
+        t
+    }
+
+    pub fn add(&mut self, kind: TypeKind, name: Option<Symbol>, span: Option<Span>) -> TypeId {
+        let id = TypeId(self.types.len() as u32);
+        self.types.push(TypeInfo { kind, name, span });
+        id
+    }
+
+    /// The type of an elementary type name (STRING/WSTRING: the default length).
+    pub fn elem(&mut self, e: ElemType) -> TypeId {
+        match e {
+            ElemType::String => self.string(false, DEFAULT_STRING_LEN),
+            ElemType::Wstring => self.string(true, DEFAULT_STRING_LEN),
+            _ => {
+                let i = ElemType::ALL.iter().position(|&x| x == e).unwrap_or(0);
+                TypeId(2 + i as u32)
+            }
+        }
+    }
+
+    pub fn string(&mut self, wide: bool, len: u32) -> TypeId {
+        if let Some(&t) = self.strings.get(&(wide, len)) {
+            return t;
+        }
+        let t = self.add(TypeKind::String { wide, len }, None, None);
+        self.strings.insert((wide, len), t);
+        t
+    }
+
+    pub fn get(&self, t: TypeId) -> &TypeInfo {
+        &self.types[t.0 as usize]
+    }
+
+    pub fn kind(&self, t: TypeId) -> &TypeKind {
+        &self.types[t.0 as usize].kind
+    }
+
+    pub fn kind_mut(&mut self, t: TypeId) -> &mut TypeKind {
+        &mut self.types[t.0 as usize].kind
+    }
+
+    pub fn len(&self) -> usize {
+        self.types.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.types.is_empty()
+    }
+
+    pub fn is_error(&self, t: TypeId) -> bool {
+        t == TypeId::ERROR
+    }
+
+    /// The elementary type a value of `t` is represented as: the type itself,
+    /// a subrange's base, an enumeration's base, STRING/WSTRING for strings.
+    pub fn scalar(&self, t: TypeId) -> Option<ElemType> {
+        match self.kind(t) {
+            TypeKind::Elem(e) => Some(*e),
+            TypeKind::Subrange { base, .. } => Some(*base),
+            TypeKind::Enum { base, .. } => Some(*base),
+            TypeKind::String { wide: false, .. } => Some(ElemType::String),
+            TypeKind::String { wide: true, .. } => Some(ElemType::Wstring),
+            _ => None,
+        }
+    }
+
+    /// The elementary type for arithmetic: like [`Self::scalar`] but not for
+    /// enumerations (which have no arithmetic).
+    pub fn numeric(&self, t: TypeId) -> Option<ElemType> {
+        match self.kind(t) {
+            TypeKind::Elem(e) => Some(*e),
+            TypeKind::Subrange { base, .. } => Some(*base),
+            _ => None,
+        }
+    }
+
+    pub fn is_bool(&self, t: TypeId) -> bool {
+        matches!(self.kind(t), TypeKind::Elem(ElemType::Bool))
+    }
+
+    pub fn is_integer(&self, t: TypeId) -> bool {
+        self.numeric(t).is_some_and(stc_values::is_integer)
+    }
+
+    /// Can a value of type `from` be stored in `to`?
+    pub fn compat(&self, from: TypeId, to: TypeId, iec2: bool) -> Compat {
+        if from == to || from == TypeId::ERROR || to == TypeId::ERROR {
+            return Compat::Same;
+        }
+        match (self.kind(from), self.kind(to)) {
+            (TypeKind::String { wide: a, .. }, TypeKind::String { wide: b, .. }) if a == b => {
+                Compat::Same
+            }
+            (TypeKind::Array { .. }, TypeKind::Array { .. }) => {
+                let anonymous = self.get(from).name.is_none() || self.get(to).name.is_none();
+                if anonymous && self.same_array_shape(from, to) {
+                    Compat::Same
+                } else {
+                    Compat::Incompatible
+                }
+            }
+            (TypeKind::Enum { .. }, _) | (_, TypeKind::Enum { .. }) => Compat::Incompatible,
+            _ => match (self.numeric(from), self.numeric(to)) {
+                (Some(a), Some(b)) if a == b => Compat::Same,
+                (Some(a), Some(b)) if stc_values::implicit_widening(a, b) => {
+                    if iec2 {
+                        Compat::Narrow
+                    } else {
+                        Compat::Widen
+                    }
+                }
+                (Some(a), Some(b)) if convertible_family(a) && convertible_family(b) => {
+                    Compat::Narrow
+                }
+                _ => Compat::Incompatible,
+            },
+        }
+    }
+
+    fn same_array_shape(&self, a: TypeId, b: TypeId) -> bool {
+        match (self.kind(a), self.kind(b)) {
+            (TypeKind::Array { dims: da, elem: ea }, TypeKind::Array { dims: db, elem: eb }) => {
+                da == db
+                    && (ea == eb
+                        || self.compat(*ea, *eb, false) == Compat::Same
+                            && self.compat(*eb, *ea, false) == Compat::Same)
+            }
+            _ => false,
+        }
+    }
+
+    /// The type as the user would write it.
+    pub fn display(&self, t: TypeId, interner: &Interner) -> String {
+        let info = self.get(t);
+        if let Some(n) = info.name {
+            return interner.spelling(n).to_string();
+        }
+        match &info.kind {
+            TypeKind::Error => "<error>".into(),
+            TypeKind::Void => "no value".into(),
+            TypeKind::Elem(e) => e.name().into(),
+            TypeKind::String { wide, len } => {
+                let kw = if *wide { "WSTRING" } else { "STRING" };
+                if *len == DEFAULT_STRING_LEN {
+                    kw.into()
+                } else {
+                    format!("{kw}[{len}]")
+                }
+            }
+            TypeKind::Subrange { base, lo, hi } => format!("{} ({lo}..{hi})", base.name()),
+            TypeKind::Enum { values, .. } => {
+                let names: Vec<&str> = values.iter().map(|v| interner.spelling(v.name)).collect();
+                format!("({})", names.join(", "))
+            }
+            TypeKind::Array { dims, elem } => {
+                let mut s = String::from("ARRAY[");
+                for (i, (lo, hi)) in dims.iter().enumerate() {
+                    if i > 0 {
+                        s.push_str(", ");
+                    }
+                    let _ = write!(s, "{lo}..{hi}");
+                }
+                let _ = write!(s, "] OF {}", self.display(*elem, interner));
+                s
+            }
+            TypeKind::Struct { .. } => "STRUCT".into(),
+            TypeKind::Fb(_) | TypeKind::Program(_) => "function block".into(),
+        }
+    }
+}
+
+/// Numeric and bit-string types, between which explicit conversions exist
+/// (so a refused implicit one is "narrowing", E0302).
+fn convertible_family(e: ElemType) -> bool {
+    stc_values::is_integer(e)
+        || stc_values::is_real(e)
+        || (stc_values::is_bit_string(e) && e != ElemType::Bool)
+}

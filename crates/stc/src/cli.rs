@@ -187,12 +187,16 @@ fn run(cli: Cli) -> Outcome {
             match sources::load(&files) {
                 Ok((sm, diags)) => {
                     let a = driver::analyse(sm, diags, &opts);
-                    finish_with(
+                    let out = finish_with(
                         &a.all_diagnostics(),
                         &a.parsed.sources,
                         &opts,
                         String::new(),
-                    )
+                    );
+                    // The process ends right after: freeing millions of tree
+                    // nodes one by one would only cost time.
+                    std::mem::forget(a);
+                    out
                 }
                 Err(e) => usage_error(e),
             }

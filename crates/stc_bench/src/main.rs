@@ -80,6 +80,20 @@ fn report(phase: &str, lines: usize, bytes: usize, time: Duration, peak: usize) 
 }
 
 fn main() {
+    // `stc-bench write FILE LINES`: write a generated project, for timing
+    // whole commands (`stc check FILE`).
+    let args: Vec<String> = std::env::args().collect();
+    if args.get(1).map(|s| s.as_str()) == Some("write") {
+        let (Some(path), Some(lines)) = (
+            args.get(2),
+            args.get(3).and_then(|n| n.replace('_', "").parse().ok()),
+        ) else {
+            eprintln!("usage: stc-bench write FILE LINES");
+            std::process::exit(2);
+        };
+        std::fs::write(path, stc_bench::generate(lines)).expect("cannot write the file");
+        return;
+    }
     let sizes: Vec<usize> = std::env::args()
         .skip(1)
         .filter_map(|a| a.replace('_', "").parse().ok())
@@ -105,6 +119,29 @@ fn main() {
         // The copy of the text into the source map is part of the run but
         // not of the parser's memory.
         report("lex+parse", n, bytes, t, peak.saturating_sub(bytes));
+        let (t, peak) = measure(Duration::from_secs(2), || {
+            let mut sm = stc_diagnostics::SourceMap::new();
+            sm.add("gen.st", src.clone());
+            let prelude = sm
+                .add("<stdlib>", stc_sema::prelude::source())
+                .map(|f| sm.file(f).span());
+            let mut interner = stc_syntax::Interner::new();
+            let (ast, diags) = stc_syntax::parse_project(&sm, &mut interner);
+            let analysis = stc_sema::analyze(
+                &ast,
+                &mut interner,
+                &sm,
+                prelude,
+                stc_sema::Options::default(),
+            );
+            assert!(
+                diags.is_empty() && analysis.diagnostics.is_empty(),
+                "{:?}",
+                analysis.diagnostics.first()
+            );
+            (sm, interner, ast, analysis)
+        });
+        report("check", n, bytes, t, peak.saturating_sub(bytes));
     }
 }
 

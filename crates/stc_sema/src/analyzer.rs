@@ -65,6 +65,9 @@ pub(crate) struct Body {
     pub loop_depth: u32,
     /// FOR control variables of the loops around the current statement.
     pub for_vars: Vec<VarId>,
+    /// Constant propagation: values that local variables certainly hold at
+    /// the current statement (seed 001 section 3.3).
+    pub known: FxHashMap<VarId, Value>,
 }
 
 pub(crate) struct Sema<'a> {
@@ -106,6 +109,8 @@ pub(crate) struct Sema<'a> {
     pub enum_index: FxHashMap<Symbol, Vec<(TypeId, u32, Option<PouId>)>>,
     /// Calls between POUs, for the recursion check: (caller, callee, span).
     pub call_edges: Vec<(PouId, PouId, Span)>,
+    /// Names of all global variables (for W0109).
+    pub global_names: FxHashSet<Symbol>,
     /// The inner index expression of `a[i][j]`, which may index partially.
     pub partial_index_ok: Option<ExprId>,
 }
@@ -148,6 +153,7 @@ impl<'a> Sema<'a> {
             enum_index: FxHashMap::default(),
             call_edges: Vec::new(),
             partial_index_ok: None,
+            global_names: FxHashSet::default(),
         }
     }
 
@@ -163,12 +169,11 @@ impl<'a> Sema<'a> {
             self.resolve_global(GlobalId(g as u32));
         }
         self.collect_configs();
-        for (i, item) in self.ast.items.iter().enumerate() {
-            if let Item::Pou(p) = item {
-                let id = self.pou_of_item(i);
-                if let Some(id) = id {
-                    self.check_body(id, p);
-                }
+        self.global_names = self.globals.iter().map(|g| g.var.name).collect();
+        for id in 0..self.pous.len() {
+            let id = PouId(id as u32);
+            if let Item::Pou(p) = &self.ast.items[self.pous[id.0 as usize].item] {
+                self.check_body(id, p);
             }
         }
         self.check_externals();
@@ -191,13 +196,6 @@ impl<'a> Sema<'a> {
             calls: self.calls,
             diagnostics: self.diags,
         }
-    }
-
-    pub fn pou_of_item(&self, item: usize) -> Option<PouId> {
-        self.pous
-            .iter()
-            .position(|p| p.item == item)
-            .map(|i| PouId(i as u32))
     }
 
     // ----- diagnostics ----------------------------------------------------

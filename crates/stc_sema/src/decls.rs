@@ -806,7 +806,20 @@ impl<'a> Sema<'a> {
     /// The rules a variable declaration must follow in its POU.
     fn check_var_decl(&mut self, p: PouId, v: VarId, src: VarSource<'a>) {
         let pou_kind = self.pous[p.0 as usize].kind;
-        let var = self.pous[p.0 as usize].vars[v.0 as usize].clone();
+        let var = {
+            let d = &self.pous[p.0 as usize].vars[v.0 as usize];
+            VarDef {
+                name: d.name,
+                span: d.span,
+                section: d.section,
+                ty: d.ty,
+                init: None,
+                constant: d.constant,
+                retain: d.retain,
+                location: None,
+                edge: d.edge,
+            }
+        };
         let name = self.spelled(var.name, var.span);
         let kind_word = match pou_kind {
             PouKind::Function => "a FUNCTION",

@@ -761,7 +761,9 @@ impl<'a> Sema<'a> {
                 ok = false;
                 continue;
             }
-            if let (Some((lo, hi)), Some(Value::Int(v))) = (dims.get(k), self.consts.get(&i)) {
+            if let (Some((lo, hi)), Some(Value::Int(v))) =
+                (dims.get(k), self.prop_value(i).as_ref())
+            {
                 if v < lo || v > hi {
                     let span = self.ast.expr(i).span;
                     let msg = format!("index {v} is out of the bounds {lo}..{hi}");
@@ -963,7 +965,7 @@ impl<'a> Sema<'a> {
         let (ls, rs) = (self.types.scalar(lt), self.types.scalar(rt));
         let rspan = self.ast.expr(r).span;
         if matches!(op, BinaryOp::Div | BinaryOp::Mod) {
-            if let Some(Value::Int(0)) = self.consts.get(&r) {
+            if let Some(Value::Int(0)) = self.prop_value(r) {
                 if rs.is_some_and(|t| !stc_values::is_real(t)) {
                     self.emit(
                         Diagnostic::new(Code::E0703, rspan, "division by zero")

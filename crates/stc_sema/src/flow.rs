@@ -10,14 +10,30 @@ use crate::analyzer::{GlobalName, Scope, Sema};
 use crate::types::TypeKind;
 use crate::{BoundArgKind, PouId, Res, Section, VarId};
 
+/// What the warnings need of a variable.
+struct Local {
+    name: stc_syntax::Symbol,
+    span: Span,
+    section: Section,
+}
+
 impl<'a> Sema<'a> {
     /// The warnings of one POU, after its body is checked.
     pub(crate) fn pou_warnings(&mut self, p: PouId, pou: &'a Pou) {
         if self.pous[p.0 as usize].is_std {
             return;
         }
-        let vars = self.pous[p.0 as usize].vars.clone();
-        for (i, v) in vars.iter().enumerate() {
+        let vars: Vec<(stc_syntax::Symbol, Span, Section)> = self.pous[p.0 as usize]
+            .vars
+            .iter()
+            .map(|v| (v.name, v.span, v.section))
+            .collect();
+        for (i, &(name, span, section)) in vars.iter().enumerate() {
+            let v = Local {
+                name,
+                span,
+                section,
+            };
             let id = VarId(i as u32);
             let shown = self.spelled(v.name, v.span);
             if matches!(v.section, Section::Var | Section::Temp) && !self.used.contains(&(p, id)) {
@@ -32,7 +48,7 @@ impl<'a> Sema<'a> {
             ) {
                 continue;
             }
-            let hidden = if self.globals.iter().any(|g| g.var.name == v.name) {
+            let hidden = if self.global_names.contains(&v.name) {
                 Some("a global variable")
             } else {
                 match self.names.get(&v.name).copied() {

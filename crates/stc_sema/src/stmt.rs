@@ -52,38 +52,67 @@ impl<'a> Sema<'a> {
             StmtKind::Assign { target, value } => {
                 let tt = self.check_lvalue(*target, scope, Write::Assign);
                 let vt = self.check_expr(*value, Some(tt), scope);
+                let mut known = None;
                 if tt != TypeId::ERROR && vt != TypeId::ERROR {
                     let what = self.target_name(*target);
                     if self.coerce(*value, vt, tt, Ctx::Assign, &what) {
                         let c = self
-                            .consts
-                            .get(value)
-                            .cloned()
+                            .prop_value(*value)
                             .and_then(|c| self.convert_const(&c, vt, tt));
-                        self.check_subrange(&c, tt, self.ast.expr(*value).span);
+                        if self.check_subrange(&c, tt, self.ast.expr(*value).span) {
+                            known = c;
+                        }
+                    }
+                }
+                self.forget_writes_in(*value, p);
+                if let Some(v) = self.root_var(*target) {
+                    let plain = matches!(self.ast.expr(*target).kind, ExprKind::Name(_));
+                    // References (in-outs, externals) may change behind a call.
+                    let tracked = plain
+                        && self.types.scalar(tt).is_some()
+                        && !matches!(
+                            self.pous[p.0 as usize].var(v).section,
+                            crate::Section::InOut | crate::Section::External
+                        );
+                    match known {
+                        Some(c) if tracked => {
+                            self.body.known.insert(v, c);
+                        }
+                        _ => {
+                            self.body.known.remove(&v);
+                        }
                     }
                 }
             }
-            StmtKind::Call(e) => match &self.ast.expr(*e).kind {
-                ExprKind::Call { callee, args } => {
-                    let t = self.call(*e, *callee, args, None, scope, true);
-                    self.set_type(*e, t);
+            StmtKind::Call(e) => {
+                match &self.ast.expr(*e).kind {
+                    ExprKind::Call { callee, args } => {
+                        let t = self.call(*e, *callee, args, None, scope, true);
+                        self.set_type(*e, t);
+                    }
+                    _ => {
+                        self.check_expr(*e, None, scope);
+                    }
                 }
-                _ => {
-                    self.check_expr(*e, None, scope);
-                }
-            },
+                self.forget_writes_in(*e, p);
+            }
             StmtKind::If {
                 branches,
                 else_body,
             } => {
+                let mut ends = Vec::new();
                 for b in branches {
                     self.condition(b.cond, scope, "IF");
+                    self.forget_writes_in(b.cond, p);
+                    let at_branch = self.body.known.clone();
                     self.stmts(&b.body, p);
+                    ends.push(std::mem::replace(&mut self.body.known, at_branch));
                 }
                 if let Some(e) = else_body {
                     self.stmts(e, p);
                 }
+                ends.push(std::mem::take(&mut self.body.known));
+                self.body.known = meet(ends);
             }
             StmtKind::Case {
                 selector,
@@ -107,6 +136,9 @@ impl<'a> Sema<'a> {
                     self.emit(Diagnostic::new(Code::E0203, span, msg));
                 }
                 let expected = if sel_ok { st } else { TypeId::ERROR };
+                self.forget_writes_in(*selector, p);
+                let at_case = self.body.known.clone();
+                let mut ends = Vec::new();
                 let mut seen: Vec<(i128, i128, Span)> = Vec::new();
                 for arm in arms {
                     for label in &arm.labels {
@@ -141,11 +173,16 @@ impl<'a> Sema<'a> {
                             }
                         }
                     }
+                    self.body.known = at_case.clone();
                     self.stmts(&arm.body, p);
+                    ends.push(std::mem::take(&mut self.body.known));
                 }
+                self.body.known = at_case;
                 if let Some(e) = else_body {
                     self.stmts(e, p);
                 }
+                ends.push(std::mem::take(&mut self.body.known));
+                self.body.known = meet(ends);
             }
             StmtKind::For {
                 var,
@@ -228,27 +265,39 @@ impl<'a> Sema<'a> {
                     }
                 }
                 let control = self.pous[p.0 as usize].lookup(var.sym);
+                self.forget_assigned_in(body, p);
+                if let Some(v) = control {
+                    self.body.known.remove(&v);
+                }
                 self.body.loop_depth += 1;
                 if let Some(v) = control {
                     self.body.for_vars.push(v);
                 }
+                let at_loop = self.body.known.clone();
                 self.stmts(body, p);
+                self.body.known = at_loop;
                 if control.is_some() {
                     self.body.for_vars.pop();
                 }
                 self.body.loop_depth -= 1;
             }
             StmtKind::While { cond, body } => {
+                self.forget_assigned_in(body, p);
                 self.condition(*cond, scope, "WHILE");
+                self.forget_writes_in(*cond, p);
+                let at_loop = self.body.known.clone();
                 self.body.loop_depth += 1;
                 self.stmts(body, p);
                 self.body.loop_depth -= 1;
+                self.body.known = at_loop;
             }
             StmtKind::Repeat { body, until } => {
+                self.forget_assigned_in(body, p);
                 self.body.loop_depth += 1;
                 self.stmts(body, p);
                 self.body.loop_depth -= 1;
                 self.condition(*until, scope, "UNTIL");
+                self.forget_writes_in(*until, p);
             }
             StmtKind::Exit | StmtKind::Continue => {
                 if self.body.loop_depth == 0 {
@@ -264,6 +313,189 @@ impl<'a> Sema<'a> {
                 }
             }
             StmtKind::Return => {}
+        }
+    }
+
+    /// The value an expression certainly has here: its folded constant, or
+    /// one computed from the propagated values of local variables.
+    pub(crate) fn prop_value(&self, e: stc_syntax::ast::ExprId) -> Option<Value> {
+        if let Some(v) = self.consts.get(&e) {
+            return Some(v.clone());
+        }
+        let ty = self.expr_types.get(e.index()).copied()?;
+        let v = match &self.ast.expr(e).kind {
+            ExprKind::Name(_) => match self.resolutions.get(&e) {
+                Some(Res::Var(v)) => self.body.known.get(v).cloned(),
+                _ => None,
+            },
+            ExprKind::Paren(i) => self.prop_value(*i),
+            ExprKind::Unary { op, operand } => {
+                let x = self.prop_value(*operand)?;
+                let s = self.types.scalar(ty)?;
+                let op = match op {
+                    stc_syntax::ast::UnaryOp::Neg => stc_values::UnOp::Neg,
+                    stc_syntax::ast::UnaryOp::Not => stc_values::UnOp::Not,
+                    stc_syntax::ast::UnaryOp::Plus => return Some(x),
+                };
+                stc_values::unary(op, s, &x).ok().map(|o| o.value)
+            }
+            ExprKind::Binary { op, lhs, rhs } => {
+                let (a, b) = (self.prop_value(*lhs)?, self.prop_value(*rhs)?);
+                let lt = self
+                    .coercions
+                    .get(lhs)
+                    .copied()
+                    .unwrap_or(*self.expr_types.get(lhs.index())?);
+                let rt = self
+                    .coercions
+                    .get(rhs)
+                    .copied()
+                    .unwrap_or(*self.expr_types.get(rhs.index())?);
+                let (ls, rs, res) = (
+                    self.types.scalar(lt)?,
+                    self.types.scalar(rt)?,
+                    self.types.scalar(ty)?,
+                );
+                stc_values::binary(crate::expr::bin_op(*op), ls, &a, rs, &b, res)
+                    .ok()
+                    .map(|o| o.value)
+            }
+            _ => None,
+        }?;
+        // The value after the expression's own implicit conversion.
+        match (self.coercions.get(&e), self.types.scalar(ty)) {
+            (Some(&to), Some(from)) => stc_values::convert(from, self.types.scalar(to)?, &v).ok(),
+            _ => Some(v),
+        }
+    }
+
+    /// Forgets the propagated values of variables written by calls inside an
+    /// expression (outputs and in-outs).
+    fn forget_writes_in(&mut self, e: stc_syntax::ast::ExprId, p: PouId) {
+        let _ = p;
+        match &self.ast.expr(e).kind {
+            ExprKind::Call { args, callee } => {
+                self.forget_writes_in(*callee, p);
+                if let Some(call) = self.calls.get(&e) {
+                    let written: Vec<stc_syntax::ast::ExprId> = call
+                        .args
+                        .iter()
+                        .filter_map(|a| match a.kind {
+                            crate::BoundArgKind::Output { target, .. }
+                            | crate::BoundArgKind::InOut(target) => Some(target),
+                            _ => None,
+                        })
+                        .collect();
+                    for t in written {
+                        if let Some(v) = self.root_var(t) {
+                            self.body.known.remove(&v);
+                        }
+                    }
+                }
+                for a in args.iter() {
+                    if let stc_syntax::ast::ArgKind::Positional(v)
+                    | stc_syntax::ast::ArgKind::Input { value: v, .. } = &a.kind
+                    {
+                        self.forget_writes_in(*v, p);
+                    }
+                }
+            }
+            ExprKind::Unary { operand, .. } => self.forget_writes_in(*operand, p),
+            ExprKind::Binary { lhs, rhs, .. } => {
+                self.forget_writes_in(*lhs, p);
+                self.forget_writes_in(*rhs, p);
+            }
+            ExprKind::Paren(i)
+            | ExprKind::Member { base: i, .. }
+            | ExprKind::PartialAccess { base: i, .. } => self.forget_writes_in(*i, p),
+            ExprKind::Index { base, indices } => {
+                self.forget_writes_in(*base, p);
+                for i in indices.iter() {
+                    self.forget_writes_in(*i, p);
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// Before a loop: forget every variable the loop may assign, since its
+    /// body may run any number of times.
+    fn forget_assigned_in(&mut self, list: &'a [Stmt], p: PouId) {
+        for s in list {
+            match &s.kind {
+                StmtKind::Assign { target, .. } => self.forget_named(*target, p),
+                StmtKind::Call(e) => self.forget_call_targets(*e, p),
+                StmtKind::If {
+                    branches,
+                    else_body,
+                } => {
+                    for b in branches {
+                        self.forget_assigned_in(&b.body, p);
+                    }
+                    if let Some(e) = else_body {
+                        self.forget_assigned_in(e, p);
+                    }
+                }
+                StmtKind::Case {
+                    arms, else_body, ..
+                } => {
+                    for a in arms {
+                        self.forget_assigned_in(&a.body, p);
+                    }
+                    if let Some(e) = else_body {
+                        self.forget_assigned_in(e, p);
+                    }
+                }
+                StmtKind::For { var, body, .. } => {
+                    if let Some(v) = self.pous[p.0 as usize].lookup(var.sym) {
+                        self.body.known.remove(&v);
+                    }
+                    self.forget_assigned_in(body, p);
+                }
+                StmtKind::While { body, .. } | StmtKind::Repeat { body, .. } => {
+                    self.forget_assigned_in(body, p)
+                }
+                _ => {}
+            }
+        }
+    }
+
+    /// Forgets the variable at the root of an assignment target, by name
+    /// (the target may not be resolved yet).
+    fn forget_named(&mut self, mut e: stc_syntax::ast::ExprId, p: PouId) {
+        loop {
+            match &self.ast.expr(e).kind {
+                ExprKind::Member { base, .. }
+                | ExprKind::Index { base, .. }
+                | ExprKind::PartialAccess { base, .. } => e = *base,
+                ExprKind::Paren(i) => e = *i,
+                ExprKind::Name(id) => {
+                    if let Some(v) = self.pous[p.0 as usize].lookup(id.sym) {
+                        self.body.known.remove(&v);
+                    }
+                    return;
+                }
+                _ => return,
+            }
+        }
+    }
+
+    /// Forgets every plain variable passed to a call (it may be an output or
+    /// an in-out, which is not known before the call is resolved).
+    fn forget_call_targets(&mut self, e: stc_syntax::ast::ExprId, p: PouId) {
+        if let ExprKind::Call { args, .. } = &self.ast.expr(e).kind {
+            for a in args.iter() {
+                match &a.kind {
+                    stc_syntax::ast::ArgKind::Output { target, .. } => {
+                        self.forget_named(*target, p)
+                    }
+                    stc_syntax::ast::ArgKind::Positional(v)
+                    | stc_syntax::ast::ArgKind::Input { value: v, .. } => {
+                        self.forget_named(*v, p);
+                        self.forget_call_targets(*v, p);
+                    }
+                }
+            }
         }
     }
 
@@ -355,4 +587,17 @@ impl<'a> Sema<'a> {
             _ => None,
         }
     }
+}
+
+/// The values known on every one of several paths that join.
+fn meet(
+    mut ends: Vec<rustc_hash::FxHashMap<crate::VarId, Value>>,
+) -> rustc_hash::FxHashMap<crate::VarId, Value> {
+    let Some(mut acc) = ends.pop() else {
+        return Default::default();
+    };
+    for e in ends {
+        acc.retain(|k, v| e.get(k) == Some(v));
+    }
+    acc
 }

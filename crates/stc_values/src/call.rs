@@ -4,7 +4,7 @@
 //!
 //! Every edge the standard leaves open (string positions out of range,
 //! negative shift counts, NaN in MAX) is decided in docs/semantics-notes.md
-//! and tested below; none of them faults or panics.
+//! and tested in tests/functions.rs; none of them faults or panics.
 
 use crate::convert::{bcd_to_int, convert, int, int_to_bcd, real, round_to, trunc};
 use crate::ops::{binary, compare, unary};

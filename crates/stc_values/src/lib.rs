@@ -16,10 +16,10 @@
 //!
 //! [`types`] answers questions about types (widths, ranges, generic
 //! families, implicit widening); [`ops`] evaluates the operators;
-//! [`convert`] the `*_TO_*` family, TRUNC and BCD; [`text`] prints values
+//! [`mod@convert`] the `*_TO_*` family, TRUNC and BCD; [`text`] prints values
 //! and parses them back; [`stdfn`] is the table of standard functions
 //! (signatures for the analyser, [`Intrinsic`] ids for the back ends) and
-//! [`call`] evaluates them.
+//! [`mod@call`] evaluates them.
 
 pub mod call;
 pub mod convert;

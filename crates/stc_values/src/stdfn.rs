@@ -15,7 +15,7 @@
 //! generic `TO_B`, `TRUNC` and `A_TRUNC_B`, `BCD_TO_B` / `A_TO_BCD` (2nd
 //! edition) and `A_BCD_TO_B` / `A_TO_BCD_B` (3rd edition). Generic forms
 //! cannot know their argument type: their intrinsic carries a placeholder
-//! (see [`Intrinsic::resolve`]); [`crate::call`] always works from the
+//! (see [`Intrinsic::resolve`]); [`crate::call()`] always works from the
 //! concrete argument and result types it is given.
 
 use crate::convert::conversion_allowed;
@@ -30,7 +30,7 @@ use GenericType as G;
 /// The standard functions, by what they compute. One id may serve several
 /// names: the `L` variants of the time functions (`ADD_LTIME` is
 /// `AddTime`, `CONCAT_LTOD` is `ConcatTod`) and the 2nd-edition spellings
-/// (`MULTIME` is `MulTime`); [`crate::call`] tells them apart by the types.
+/// (`MULTIME` is `MulTime`); [`crate::call()`] tells them apart by the types.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Intrinsic {
     // Numeric (IEC 61131-3 3rd ed. table 23).

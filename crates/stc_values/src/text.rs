@@ -88,7 +88,7 @@ fn real_text(x: f64, single: bool) -> String {
 }
 
 /// Truncates a string value to at most `len` characters (bytes of a
-/// STRING, code units of a WSTRING), as assignment to STRING[len] does.
+/// STRING, code units of a WSTRING), as assignment to `STRING[len]` does.
 /// Other values are returned unchanged.
 pub fn truncate(v: &Value, len: u32) -> Value {
     let n = usize::try_from(len).unwrap_or(usize::MAX);
@@ -109,9 +109,11 @@ pub fn truncate(v: &Value, len: u32) -> Value {
 /// dates-and-times with or without their prefix (`T#1s`, `1s`, `D#2024-01-31`,
 /// `2024-01-31`). Every form may carry its type prefix (`INT#-5`,
 /// `BOOL#TRUE`, `LREAL#1.5`); it must name `to` (for time and date types
-/// the long and short prefixes are both accepted). A string or character
-/// target takes the text itself. Anything else, and any value outside
-/// `to`'s range, is a conversion fault.
+/// the long and short prefixes are both accepted). A STRING or WSTRING
+/// target takes the text itself (characters above U+00FF fault for
+/// STRING); a CHAR or WCHAR target takes its first character (NUL for an
+/// empty text). Anything else, and any value outside `to`'s range, is a
+/// conversion fault.
 pub fn parse_value(to: ElemType, text: &str) -> Result<Value, Fault> {
     match to {
         E::String => {

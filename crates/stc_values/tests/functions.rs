@@ -835,3 +835,81 @@ fn ill_formed_calls_never_panic() {
         Err(Fault::Conversion)
     );
 }
+
+#[test]
+fn every_conversion_name_matches_the_conversion_table() {
+    use stc_values::{conversion_allowed, default_value};
+    let mut names = 0;
+    for &(a_name, a) in E::SPELLINGS {
+        for &(b_name, b) in E::SPELLINGS {
+            let name = format!("{a_name}_TO_{b_name}");
+            let f = lookup(&name);
+            assert_eq!(f.is_some(), a != b && conversion_allowed(a, b), "{name}");
+            let Some(f) = f else { continue };
+            names += 1;
+            assert_eq!(f.intrinsic, I::Convert { from: a, to: b });
+            // The initial value of every type converts, except an empty
+            // string, which is no literal of a non-string type.
+            let got = call(f.intrinsic, &[a], &[default_value(a)], b);
+            let empty_text = matches!(a, E::String | E::Wstring)
+                && !matches!(b, E::String | E::Wstring | E::Char | E::Wchar);
+            assert_eq!(got.is_err(), empty_text, "{name}: {got:?}");
+        }
+    }
+    assert!(names > 500, "{names}");
+    for &(name, t) in E::SPELLINGS {
+        let f = lookup(&format!("TO_{name}")).expect("generic TO_");
+        assert_eq!(
+            f.intrinsic.resolve(&[E::Int], t),
+            I::Convert {
+                from: E::Int,
+                to: t
+            }
+        );
+    }
+}
+
+#[test]
+fn generic_intrinsics_resolve_to_the_call_types() {
+    let bcd = lookup("BCD_TO_DINT").expect("BCD_TO_DINT");
+    assert_eq!(
+        bcd.intrinsic.resolve(&[E::Dword], E::Dint),
+        I::BcdToInt {
+            from: E::Dword,
+            to: E::Dint
+        }
+    );
+    let to_bcd = lookup("UDINT_TO_BCD").expect("UDINT_TO_BCD");
+    assert_eq!(
+        to_bcd.intrinsic.resolve(&[E::Udint], E::Lword),
+        I::IntToBcd {
+            from: E::Udint,
+            to: E::Lword
+        }
+    );
+    assert_eq!(I::Abs.resolve(&[E::Int], E::Int), I::Abs);
+    assert_eq!(
+        I::Trunc {
+            from: E::Lreal,
+            to: None
+        }
+        .resolve(&[], E::Int),
+        I::Trunc {
+            from: E::Lreal,
+            to: None
+        }
+    );
+    // call() uses the types it is given, not the placeholders.
+    assert_eq!(
+        call(bcd.intrinsic, &[E::Byte], &[i(0x42)], E::Dint),
+        Ok(Outcome::exact(i(42)))
+    );
+}
+
+#[test]
+fn fault_texts_are_the_cli_contracts() {
+    assert_eq!(Fault::DivisionByZero.kind(), "division by zero");
+    assert_eq!(Fault::Conversion.kind(), "conversion failure");
+    assert_eq!(Fault::MuxRange.kind(), "MUX selector out of range");
+    assert_eq!(Fault::MuxRange.to_string(), "MUX selector out of range");
+}

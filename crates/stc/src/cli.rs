@@ -208,27 +208,46 @@ fn run(cli: Cli) -> Outcome {
             files,
         } => {
             let opts = common.options();
-            let parsed = match load_and_parse(&files) {
-                Ok(p) => p,
+            if emit == Emit::Ast {
+                let parsed = match load_and_parse(&files) {
+                    Ok(p) => p,
+                    Err(e) => return usage_error(e),
+                };
+                if driver::failed(&parsed.diagnostics, &opts) {
+                    return finish(&parsed, &opts, String::new());
+                }
+                let text = emit_ast(&parsed);
+                let mut o = finish(&parsed, &opts, String::new());
+                match output {
+                    Some(path) => o.file = Some((path, text.into_bytes())),
+                    None => o.stdout = text,
+                }
+                return o;
+            }
+            let (sm, diags) = match sources::load(&files) {
+                Ok(x) => x,
                 Err(e) => return usage_error(e),
             };
-            if driver::failed(&parsed.diagnostics, &opts) {
-                return finish(&parsed, &opts, String::new());
+            let a = driver::analyse(sm, diags, &opts);
+            let all = a.all_diagnostics();
+            let mut o = finish_with(&all, &a.parsed.sources, &opts, String::new());
+            if driver::failed(&all, &opts) {
+                return o;
             }
-            match emit {
-                Emit::Ast => {
-                    let text = emit_ast(&parsed);
-                    let mut o = finish(&parsed, &opts, String::new());
-                    match output {
-                        Some(path) => o.file = Some((path, text.into_bytes())),
-                        None => o.stdout = text,
-                    }
-                    o
-                }
+            let module = driver::lower(a);
+            let text = match emit {
+                Emit::Ir => stc_ir::dump::dump(&module, false),
                 other => {
-                    usage_error(format!("--emit {other:?} is not implemented yet").to_lowercase())
+                    return usage_error(
+                        format!("--emit {other:?} is not implemented yet").to_lowercase(),
+                    )
                 }
+            };
+            match output {
+                Some(path) => o.file = Some((path, text.into_bytes())),
+                None => o.stdout = text,
             }
+            o
         }
     }
 }

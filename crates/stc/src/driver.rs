@@ -73,6 +73,14 @@ pub fn analyse(mut sources: SourceMap, diagnostics: Vec<Diagnostic>, opts: &Opti
     }
 }
 
+/// Lowers an analysed project without errors to the IR.
+pub fn lower(a: Analysed) -> stc_ir::Module {
+    let Analysed {
+        parsed, analysis, ..
+    } = a;
+    stc_ir::lower(&parsed.ast, analysis, &parsed.interner, &parsed.sources)
+}
+
 /// Parses every file of the source map as one project.
 pub fn parse(sources: SourceMap, mut diagnostics: Vec<Diagnostic>) -> Parsed {
     let mut interner = Interner::new();

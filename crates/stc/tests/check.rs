@@ -52,3 +52,32 @@ fn run_cases_check_cleanly_except_for_their_annotations() {
 fn examples_check_without_any_diagnostic() {
     common::run_all(&common::data_dir().join("../examples"), check_case);
 }
+
+/// Every diagnostic code of the catalogue is triggered by at least one test
+/// case (an annotation in the corpus), and has an explanation.
+#[test]
+fn every_diagnostic_code_has_a_test_case() {
+    let mut seen = std::collections::BTreeSet::new();
+    let mut stack = vec![common::data_dir()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap().flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if p.extension().is_some_and(|x| x == "st") {
+                let text = std::fs::read_to_string(&p).unwrap_or_else(|_| {
+                    String::from_utf8_lossy(&std::fs::read(&p).unwrap()).into_owned()
+                });
+                for (_, _, code) in common::annotations("", &text) {
+                    seen.insert(code);
+                }
+            }
+        }
+    }
+    let missing: Vec<&str> = stc_diagnostics::Code::ALL
+        .iter()
+        .map(|c| c.as_str())
+        .filter(|c| !seen.contains(*c))
+        .collect();
+    assert!(missing.is_empty(), "codes without a test case: {missing:?}");
+}

@@ -98,8 +98,9 @@ pub struct Var {
     pub constant: bool,
     pub retain: bool,
     pub location: Option<DirectAddress>,
-    /// Variables the compiler added (edge memories); not visible to users.
-    pub hidden: bool,
+    /// Variables the compiler added (edge memories, FOR bounds), with the
+    /// role they play (`prev`, `end`...); not visible to users.
+    pub hidden: Option<&'static str>,
     pub span: Span,
 }
 

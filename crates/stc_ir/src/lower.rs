@@ -126,7 +126,7 @@ impl<'a> Lowerer<'a> {
                 constant: v.constant,
                 retain: v.retain,
                 location: v.location.clone(),
-                hidden: false,
+                hidden: None,
                 span: v.span,
             })
             .collect();
@@ -137,8 +137,8 @@ impl<'a> Lowerer<'a> {
             let Some(edge) = v.edge else { continue };
             let input = VarId(i as u32);
             let bool_ty = self.bool_ty();
-            let prev = self.hidden(v.name, bool_ty, Storage::Instance, v.span);
-            let cur = self.hidden(v.name, bool_ty, Storage::Frame, v.span);
+            let prev = self.hidden(v.name, "prev", bool_ty, Storage::Instance, v.span);
+            let cur = self.hidden(v.name, "cur", bool_ty, Storage::Frame, v.span);
             let load = |v: VarId| Expr {
                 kind: ExprKind::Load(Place {
                     root: Root::Var(v),
@@ -206,6 +206,7 @@ impl<'a> Lowerer<'a> {
     fn hidden(
         &mut self,
         name: stc_syntax::Symbol,
+        role: &'static str,
         ty: TypeId,
         storage: Storage,
         span: Span,
@@ -224,7 +225,7 @@ impl<'a> Lowerer<'a> {
             constant: false,
             retain: false,
             location: None,
-            hidden: true,
+            hidden: Some(role),
             span,
         });
         id
@@ -443,7 +444,7 @@ impl<'a> Lowerer<'a> {
                 value: start,
             },
         ));
-        let end_var = self.hidden(var.sym, ty, Storage::Frame, var.span);
+        let end_var = self.hidden(var.sym, "end", ty, Storage::Frame, var.span);
         let end = self.expr(to);
         out.push(at(
             self,
@@ -471,7 +472,7 @@ impl<'a> Lowerer<'a> {
                 konst(st),
             ),
             None => {
-                let step_var = self.hidden(var.sym, ty, Storage::Frame, var.span);
+                let step_var = self.hidden(var.sym, "step", ty, Storage::Frame, var.span);
                 let b = by.map(|b| self.expr(b)).unwrap_or_else(|| konst(1));
                 out.push(at(
                     self,

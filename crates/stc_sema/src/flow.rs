@@ -173,7 +173,7 @@ impl<'a> Sema<'a> {
 
     /// W0101: a variable written by one argument (through `=>` or a
     /// VAR_IN_OUT of a nested call) and read by another.
-    pub(crate) fn check_eval_order(&mut self, args: &[Arg], _scope: Scope, span: Span) {
+    pub(crate) fn check_eval_order(&mut self, args: &[Arg], scope: Scope, span: Span) {
         if args.len() < 2 {
             return;
         }
@@ -192,15 +192,28 @@ impl<'a> Sema<'a> {
         }
         for (i, (_, w)) in effects.iter().enumerate() {
             for (j, (r, _)) in effects.iter().enumerate() {
-                if i != j && w.iter().any(|v| r.contains(v)) {
-                    self.emit(
-                        Diagnostic::new(Code::W0101, span, "the result of this call depends on the order its arguments are evaluated in")
-                            .with_secondary(args[i].span, "this argument writes a variable")
-                            .with_secondary(args[j].span, "that this argument reads")
-                            .with_note("stc evaluates arguments left to right; other tools may not"),
-                    );
-                    return;
-                }
+                let Some(&shared) = w.iter().find(|v| r.contains(v)).filter(|_| i != j) else {
+                    continue;
+                };
+                let name = match scope {
+                    Scope::Pou(p) => format!(
+                        "`{}`",
+                        self.sym_name(self.pous[p.0 as usize].var(shared).name)
+                    ),
+                    _ => "a variable".into(),
+                };
+                self.emit(
+                    Diagnostic::new(
+                        Code::W0101,
+                        span,
+                        format!("the result of this call depends on the order its arguments are evaluated in: {name} is written by one and read by another"),
+                    )
+                    .with_secondary(args[i].span, format!("this argument writes {name}"))
+                    .with_secondary(args[j].span, format!("this argument reads {name}"))
+                    .with_note("stc evaluates arguments left to right; other tools may not")
+                    .with_help(format!("store the output in another variable first, or read {name} in a separate statement")),
+                );
+                return;
             }
         }
     }

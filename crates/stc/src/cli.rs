@@ -235,8 +235,24 @@ fn run(cli: Cli) -> Outcome {
                 return o;
             }
             let module = driver::lower(a);
-            let text = match emit {
-                Emit::Ir => stc_ir::dump::dump(&module, false),
+            let bytes = match emit {
+                Emit::Ir => stc_ir::dump::dump(&module, false).into_bytes(),
+                Emit::Vmasm | Emit::Bytecode => {
+                    let image = match stc_vm::compile(&module) {
+                        Ok(i) => i,
+                        Err(e) => return usage_error(e),
+                    };
+                    if emit == Emit::Vmasm {
+                        stc_vm::asm::disassemble(&image).into_bytes()
+                    } else {
+                        if output.is_none() {
+                            return usage_error(
+                                "--emit bytecode writes a binary file: give it with -o FILE.stbc",
+                            );
+                        }
+                        stc_vm::format::encode(&image)
+                    }
+                }
                 other => {
                     return usage_error(
                         format!("--emit {other:?} is not implemented yet").to_lowercase(),
@@ -244,8 +260,8 @@ fn run(cli: Cli) -> Outcome {
                 }
             };
             match output {
-                Some(path) => o.file = Some((path, text.into_bytes())),
-                None => o.stdout = text,
+                Some(path) => o.file = Some((path, bytes)),
+                None => o.stdout = String::from_utf8_lossy(&bytes).into_owned(),
             }
             o
         }

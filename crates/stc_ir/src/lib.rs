@@ -53,6 +53,19 @@ pub struct Module {
 }
 
 impl Module {
+    /// The type of an elementary type name (not STRING/WSTRING).
+    pub fn types_elem(&self, e: stc_syntax::token::ElemType) -> TypeId {
+        let i = stc_syntax::token::ElemType::ALL
+            .iter()
+            .position(|&x| x == e)
+            .unwrap_or(0);
+        TypeId(2 + i as u32)
+    }
+
+    pub fn types_bool(&self) -> TypeId {
+        self.types_elem(stc_syntax::token::ElemType::Bool)
+    }
+
     pub fn pou(&self, p: PouId) -> &Pou {
         &self.pous[p.0 as usize]
     }
@@ -84,8 +97,9 @@ pub enum Storage {
     /// In the frame of one call (functions: everything; FB/programs:
     /// VAR_TEMP).
     Frame,
-    /// A reference (VAR_IN_OUT, VAR_EXTERNAL), stored in the instance or the
-    /// frame as a pointer to the real variable.
+    /// A reference (VAR_IN_OUT, VAR_EXTERNAL, a located variable), stored in
+    /// the instance or the frame as the address of the real variable (for a
+    /// located variable: its slot of the process image).
     Ref,
 }
 
@@ -189,6 +203,9 @@ pub enum FaultKind {
     MuxRange,
     ForStepZero,
     Watchdog,
+    /// Bytecode that tried to leave its memory (only a corrupt or hostile
+    /// program file can; the verifier rejects them before they run).
+    InvalidCode,
 }
 
 impl FaultKind {
@@ -202,6 +219,7 @@ impl FaultKind {
             FaultKind::MuxRange => "MUX selector out of range",
             FaultKind::ForStepZero => "FOR step of zero",
             FaultKind::Watchdog => "watchdog",
+            FaultKind::InvalidCode => "invalid bytecode",
         }
     }
 

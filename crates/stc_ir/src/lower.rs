@@ -118,6 +118,8 @@ impl<'a> Lowerer<'a> {
                 section: v.section,
                 storage: match v.section {
                     Section::InOut | Section::External => Storage::Ref,
+                    // A located variable is its process-image slot.
+                    _ if v.location.as_ref().is_some_and(|l| !l.is_incomplete()) => Storage::Ref,
                     _ if function => Storage::Frame,
                     Section::Temp => Storage::Frame,
                     _ => Storage::Instance,

@@ -1,0 +1,2163 @@
+//! The bytecode compiler: IR to [`Image`].
+//!
+//! Data first: every process-image slot, global and program instance gets
+//! its place in the data area with its initial value (references bound to
+//! what they refer to). Then code, one POU at a time, callees first so each
+//! call knows the size of the frame it reserves for its callee. Expression
+//! trees become three-address code over frame temporaries; a place whose
+//! address is static is used directly as an operand, a computed one (an
+//! element with a run-time index, anything behind a reference) through a
+//! pointer temporary and `load`/`store`.
+
+use rustc_hash::FxHashMap;
+use stc_ir::layout::{elem_size, Layouts};
+use stc_ir::{Expr, ExprKind, FaultKind, Module, Place, Proj, Root, Stmt, StmtKind, Storage};
+use stc_sema::{InitValue, PouId, Section, TypeId, TypeKind, VarId};
+use stc_syntax::ast::PouKind as AstPouKind;
+use stc_syntax::literal::{AddrSize, DirectAddress};
+use stc_syntax::token::ElemType;
+use stc_values::{BinOp, UnOp, Value};
+
+use crate::image::*;
+use crate::instr::{Instr, Op, Tgt};
+use crate::machine::{write_scalar, write_string};
+use crate::num::Num;
+
+#[derive(Debug, thiserror::Error)]
+pub enum CompileError {
+    #[error("the program needs more than 1 GiB of memory")]
+    TooLarge,
+    #[error("{0} is not supported by the bytecode compiler yet")]
+    Unsupported(String),
+}
+
+fn align_up(x: u32, a: u32) -> u32 {
+    x.div_ceil(a.max(1)) * a.max(1)
+}
+
+/// A fault kind's code in `fault` instructions.
+pub fn fault_code(k: FaultKind) -> u32 {
+    match k {
+        FaultKind::DivisionByZero => 0,
+        FaultKind::IndexOutOfBounds => 1,
+        FaultKind::SubrangeViolation => 2,
+        FaultKind::Conversion => 3,
+        FaultKind::MuxRange => 4,
+        FaultKind::ForStepZero => 5,
+        FaultKind::Watchdog => 6,
+        FaultKind::InvalidCode => 7,
+    }
+}
+
+pub fn fault_of_code(c: u32) -> FaultKind {
+    match c {
+        0 => FaultKind::DivisionByZero,
+        1 => FaultKind::IndexOutOfBounds,
+        2 => FaultKind::SubrangeViolation,
+        3 => FaultKind::Conversion,
+        4 => FaultKind::MuxRange,
+        5 => FaultKind::ForStepZero,
+        6 => FaultKind::Watchdog,
+        _ => FaultKind::InvalidCode,
+    }
+}
+
+/// Where a value is: at an operand, or behind a pointer held in a temporary.
+#[derive(Clone, Copy, Debug)]
+enum Loc {
+    At(Op),
+    Ptr { ptr: Op, off: u32 },
+}
+
+/// A place: its location, and for `x.%X3` the part selected.
+#[derive(Clone, Copy, Debug)]
+struct PlaceLoc {
+    loc: Loc,
+    part: Option<(u32, AddrSize, u32)>,
+}
+
+/// The frame of the POU being compiled.
+#[derive(Default)]
+struct Frame {
+    /// Offset of each frame variable.
+    var_off: FxHashMap<u32, u32>,
+    /// Top of the temporaries.
+    top: u32,
+    max: u32,
+}
+
+struct LoopCtx {
+    breaks: Vec<usize>,
+    continues: Vec<usize>,
+}
+
+pub struct Compiler<'a> {
+    m: &'a Module,
+    l: Layouts,
+    code: Vec<Instr>,
+    lines: Vec<LineEntry>,
+    files: Vec<String>,
+    types: Vec<TypeDesc>,
+    type_map: FxHashMap<TypeId, TypeRef>,
+    data: Vec<u8>,
+    io: Vec<IoSlot>,
+    io_map: FxHashMap<DirectAddress, u32>,
+    global_off: Vec<u32>,
+    consts: Vec<u8>,
+    const_map: FxHashMap<Vec<u8>, u32>,
+    calls: Vec<StdCall>,
+    pous: Vec<PouCode>,
+    /// Per POU: the frame layout (set when the POU is compiled).
+    frames: Vec<Option<FrameInfo>>,
+    // State of the POU being compiled.
+    cur: PouId,
+    frame: Frame,
+    loops: Vec<LoopCtx>,
+    data_frozen: bool,
+}
+
+#[derive(Clone)]
+struct FrameInfo {
+    var_off: FxHashMap<u32, u32>,
+    size: u32,
+}
+
+/// Compiles a module (without errors) to an image.
+pub fn compile(m: &Module) -> Result<Image, CompileError> {
+    let c = Compiler {
+        m,
+        l: Layouts::compute(m),
+        code: Vec::new(),
+        lines: Vec::new(),
+        files: Vec::new(),
+        types: Vec::new(),
+        type_map: FxHashMap::default(),
+        data: Vec::new(),
+        io: Vec::new(),
+        io_map: FxHashMap::default(),
+        global_off: Vec::new(),
+        consts: Vec::new(),
+        const_map: FxHashMap::default(),
+        calls: Vec::new(),
+        pous: Vec::new(),
+        frames: vec![None; m.pous.len()],
+        cur: PouId(0),
+        frame: Frame::default(),
+        loops: Vec::new(),
+        data_frozen: false,
+    };
+    c.run()
+}
+
+impl<'a> Compiler<'a> {
+    fn run(mut self) -> Result<Image, CompileError> {
+        // POU descriptors first (instances refer to them by index).
+        for (i, p) in self.m.pous.iter().enumerate() {
+            let kind = match p.kind {
+                AstPouKind::Function => PouKind::Function,
+                AstPouKind::FunctionBlock => PouKind::FunctionBlock,
+                AstPouKind::Program => PouKind::Program,
+            };
+            self.pous.push(PouCode {
+                name: self.m.name(p.name).to_string(),
+                kind,
+                entry: 0,
+                instance_size: self.l.pous[i].instance.size,
+                frame_size: 0,
+                frame_init_at: 0,
+                frame_template: (0, 0),
+                vars: Vec::new(),
+                instance_type: 0,
+            });
+        }
+        for i in 0..self.m.pous.len() {
+            let t = self.types.len() as u32;
+            self.types.push(TypeDesc::Instance { pou: i as u32 });
+            self.pous[i].instance_type = t;
+        }
+        // Data: process image, globals, program instances.
+        self.collect_io();
+        let mut globals = Vec::new();
+        for (gi, g) in self.m.globals.iter().enumerate() {
+            let lay = self.l.of(g.ty);
+            let off = match g.location.as_ref().filter(|a| !a.is_incomplete()) {
+                Some(a) => self.io_slot(a, g.ty),
+                None => {
+                    let off = self.alloc_data(lay.size, lay.align)?;
+                    self.write_init(g.ty, off, g.init.as_ref(), None);
+                    off
+                }
+            };
+            self.global_off.push(off);
+            let ty = self.ty_ref(g.ty);
+            let config = self
+                .m
+                .configs
+                .iter()
+                .position(|c| {
+                    c.globals.contains(&stc_sema::GlobalId(gi as u32))
+                        || c.resources
+                            .iter()
+                            .any(|r| r.globals.contains(&stc_sema::GlobalId(gi as u32)))
+                })
+                .map(|c| c as u32);
+            globals.push(GlobalDesc {
+                name: self.m.name(g.name).to_string(),
+                ty,
+                offset: off,
+                config,
+                location: g.location.clone(),
+                constant: g.constant,
+            });
+        }
+        let mut configs = Vec::new();
+        for (ci, c) in self.m.configs.iter().enumerate() {
+            let mut resources = Vec::new();
+            for (ri, r) in c.resources.iter().enumerate() {
+                let tasks = r
+                    .tasks
+                    .iter()
+                    .map(|t| TaskDesc {
+                        name: self.m.name(t.name).to_string(),
+                        interval_ns: t.interval,
+                        priority: t.priority,
+                        single: t
+                            .single
+                            .as_ref()
+                            .and_then(|s| self.source(s, self.m.types_bool())),
+                    })
+                    .collect();
+                let mut programs = Vec::new();
+                for inst in &r.programs {
+                    programs.push(self.program_instance(
+                        self.m.name(inst.name).to_string(),
+                        inst.pou,
+                        inst.task.map(|t| t as u32),
+                        Some((ci, ri)),
+                        inst,
+                    )?);
+                }
+                resources.push(ResourceDesc {
+                    name: r.name.map(|n| self.m.name(n).to_string()),
+                    tasks,
+                    programs,
+                });
+            }
+            configs.push(ConfigDesc {
+                name: self.m.name(c.name).to_string(),
+                resources,
+            });
+        }
+        let mut programs = Vec::new();
+        for (i, p) in self.m.pous.iter().enumerate() {
+            if p.kind == AstPouKind::Program {
+                let off = self.instance(PouId(i as u32), None)?;
+                programs.push(ProgramInst {
+                    name: self.m.name(p.name).to_string(),
+                    pou: i as u32,
+                    offset: off,
+                    task: None,
+                    inputs: Vec::new(),
+                    outputs: Vec::new(),
+                });
+            }
+        }
+        self.data_frozen = true;
+        // Variable descriptors.
+        for i in 0..self.m.pous.len() {
+            self.pou_vars(PouId(i as u32));
+        }
+        // Code, callees first.
+        for p in self.callee_order() {
+            self.compile_pou(p)?;
+        }
+        let stack_size = self.stack_need();
+        let data_size = self.data.len() as u32;
+        Ok(Image {
+            code: self.code,
+            consts: self.consts,
+            data_size,
+            init: self.data,
+            stack_size,
+            types: self.types,
+            pous: self.pous,
+            globals,
+            configs,
+            programs,
+            io: self.io,
+            calls: self.calls,
+            lines: self.lines,
+            files: self.files,
+        })
+    }
+
+    // ----- types -------------------------------------------------------------
+
+    fn ty_ref(&mut self, t: TypeId) -> TypeRef {
+        if let Some(&r) = self.type_map.get(&t) {
+            return r;
+        }
+        let desc = match self.m.types.kind(t).clone() {
+            TypeKind::Elem(e) => TypeDesc::Scalar(e),
+            TypeKind::Subrange { base, .. } => TypeDesc::Scalar(base),
+            TypeKind::String { wide, len } => TypeDesc::String { wide, cap: len },
+            TypeKind::Enum { values, base } => TypeDesc::Enum {
+                name: self
+                    .m
+                    .types
+                    .get(t)
+                    .name
+                    .map(|n| self.m.name(n).to_string())
+                    .unwrap_or_default(),
+                base,
+                values: values
+                    .iter()
+                    .map(|v| (self.m.name(v.name).to_string(), v.value))
+                    .collect(),
+            },
+            TypeKind::Array { dims, elem } => {
+                let e = self.ty_ref(elem);
+                TypeDesc::Array {
+                    elem: e,
+                    dims: dims.iter().map(|(l, h)| (*l as i64, *h as i64)).collect(),
+                    stride: self.l.stride(&self.m.types, t),
+                }
+            }
+            TypeKind::Struct { fields } => {
+                let mut fs = Vec::new();
+                for (i, f) in fields.iter().enumerate() {
+                    let ft = self.ty_ref(f.ty);
+                    fs.push(FieldDesc {
+                        name: self.m.name(f.name).to_string(),
+                        ty: ft,
+                        offset: self.l.field_offset(t, i as u32),
+                    });
+                }
+                TypeDesc::Struct {
+                    name: self.m.types.get(t).name.map(|n| self.m.name(n).to_string()),
+                    fields: fs,
+                }
+            }
+            TypeKind::Fb(p) | TypeKind::Program(p) => {
+                let r = self.pous[p.0 as usize].instance_type;
+                self.type_map.insert(t, r);
+                return r;
+            }
+            TypeKind::Error | TypeKind::Void => TypeDesc::Scalar(ElemType::Bool),
+        };
+        let r = self.types.len() as u32;
+        self.types.push(desc);
+        self.type_map.insert(t, r);
+        r
+    }
+
+    fn scalar(&self, t: TypeId) -> Option<ElemType> {
+        self.m.types.scalar(t)
+    }
+
+    fn num(&self, t: TypeId) -> Option<Num> {
+        self.scalar(t).and_then(Num::of)
+    }
+
+    fn size_of(&self, t: TypeId) -> u32 {
+        self.l.of(t).size
+    }
+
+    // ----- data area -----------------------------------------------------------
+
+    fn alloc_data(&mut self, size: u32, align: u32) -> Result<u32, CompileError> {
+        let off = align_up(self.data.len() as u32, align.max(1));
+        let end = off as u64 + size as u64;
+        if end > (1 << 30) {
+            return Err(CompileError::TooLarge);
+        }
+        self.data.resize(end as usize, 0);
+        Ok(off)
+    }
+
+    fn collect_io(&mut self) {
+        let m = self.m;
+        let mut found: Vec<(DirectAddress, TypeId)> = Vec::new();
+        for g in &m.globals {
+            if let Some(a) = g.location.as_ref().filter(|a| !a.is_incomplete()) {
+                found.push((a.clone(), g.ty));
+            }
+        }
+        for p in &m.pous {
+            for v in &p.vars {
+                if let Some(a) = v.location.as_ref().filter(|a| !a.is_incomplete()) {
+                    found.push((a.clone(), v.ty));
+                }
+            }
+            visit_places(&p.body, &mut |pl: &Place| {
+                if let Root::Direct(a) = &pl.root {
+                    found.push((a.clone(), addr_type(m, a)));
+                }
+            });
+        }
+        for (a, t) in found {
+            self.io_slot(&a, t);
+        }
+    }
+
+    /// The data offset of a direct address's slot (allocated on first use).
+    fn io_slot(&mut self, a: &DirectAddress, t: TypeId) -> u32 {
+        if let Some(&off) = self.io_map.get(a) {
+            return off;
+        }
+        let size = match a.size {
+            AddrSize::Bit => 1,
+            s => s.bits() / 8,
+        };
+        let off = self
+            .alloc_data(size.max(self.size_of(t)), size)
+            .unwrap_or(0);
+        let ty = self.ty_ref(t);
+        self.io.push(IoSlot {
+            address: a.clone(),
+            offset: off,
+            ty,
+        });
+        self.io_map.insert(a.clone(), off);
+        off
+    }
+
+    /// Writes the initial value of a variable of type `t` at data offset `off`.
+    fn write_init(
+        &mut self,
+        t: TypeId,
+        off: u32,
+        init: Option<&InitValue>,
+        ctx: Option<(usize, usize)>,
+    ) {
+        match self.m.types.kind(t).clone() {
+            TypeKind::Elem(_)
+            | TypeKind::Subrange { .. }
+            | TypeKind::Enum { .. }
+            | TypeKind::String { .. } => {
+                let v = match init {
+                    Some(InitValue::Scalar(v)) => Some(v.clone()),
+                    _ => match self.m.types.kind(t) {
+                        TypeKind::Subrange { lo, .. } => Some(Value::Int(*lo)),
+                        TypeKind::Enum { values, .. } => {
+                            values.first().map(|v| Value::Int(v.value))
+                        }
+                        _ => None,
+                    },
+                };
+                if let Some(v) = v {
+                    let bytes = self.value_bytes(t, &v);
+                    let o = off as usize;
+                    if let Some(dst) = self.data.get_mut(o..o + bytes.len()) {
+                        dst.copy_from_slice(&bytes);
+                    }
+                } else if let Some(e) = self.scalar(t) {
+                    if Num::of(e).is_some() {
+                        let v = stc_values::default_value(e);
+                        let bytes = self.value_bytes(t, &v);
+                        let o = off as usize;
+                        if let Some(dst) = self.data.get_mut(o..o + bytes.len()) {
+                            dst.copy_from_slice(&bytes);
+                        }
+                    }
+                }
+            }
+            TypeKind::Array { elem, .. } => {
+                let stride = self.l.stride(&self.m.types, t);
+                let count = self.size_of(t).checked_div(stride).unwrap_or(0);
+                let list = match init {
+                    Some(InitValue::Array(l)) => l.as_slice(),
+                    _ => &[],
+                };
+                for i in 0..count {
+                    let v = list.get(i as usize).and_then(|v| v.as_ref());
+                    self.write_init(elem, off + i * stride, v, ctx);
+                }
+            }
+            TypeKind::Struct { fields } => {
+                for (i, f) in fields.iter().enumerate() {
+                    let given = match init {
+                        Some(InitValue::Struct(l)) => {
+                            l.iter().find(|(n, _)| *n == f.name).map(|(_, v)| v)
+                        }
+                        _ => None,
+                    };
+                    let v = given.or(f.init.as_ref()).cloned();
+                    let fo = off + self.l.field_offset(t, i as u32);
+                    self.write_init(f.ty, fo, v.as_ref(), ctx);
+                }
+            }
+            TypeKind::Fb(p) | TypeKind::Program(p) => {
+                let overrides = match init {
+                    Some(InitValue::Struct(l)) => l.clone(),
+                    _ => Vec::new(),
+                };
+                self.init_instance(p, off, ctx, &overrides);
+            }
+            TypeKind::Error | TypeKind::Void => {}
+        }
+    }
+
+    /// Initialises an instance of a POU at `off`: variables, nested
+    /// instances, and references bound to globals and process-image slots.
+    fn init_instance(
+        &mut self,
+        p: PouId,
+        off: u32,
+        ctx: Option<(usize, usize)>,
+        overrides: &[(stc_syntax::Symbol, InitValue)],
+    ) {
+        let m = self.m;
+        let pou = &m.pous[p.0 as usize];
+        for (i, v) in pou.vars.iter().enumerate() {
+            if self.l.pous[p.0 as usize].in_frame[i] {
+                continue;
+            }
+            let voff = off + self.l.pous[p.0 as usize].offsets[i];
+            if v.storage == Storage::Ref {
+                let target = if let Some(a) = v.location.as_ref().filter(|a| !a.is_incomplete()) {
+                    Some(self.io_slot(a, v.ty))
+                } else if v.section == Section::External {
+                    self.bind_global(v.name, ctx)
+                } else {
+                    None
+                };
+                if let Some(t) = target {
+                    let o = voff as usize;
+                    if let Some(dst) = self.data.get_mut(o..o + 4) {
+                        dst.copy_from_slice(&t.to_le_bytes());
+                    }
+                }
+                continue;
+            }
+            let init = overrides
+                .iter()
+                .find(|(n, _)| *n == v.name)
+                .map(|(_, v)| v.clone())
+                .or_else(|| v.init.clone());
+            self.write_init(v.ty, voff, init.as_ref(), ctx);
+        }
+    }
+
+    /// The global a VAR_EXTERNAL named `name` refers to, in a configuration
+    /// (and resource) or among the top-level globals.
+    fn bind_global(&self, name: stc_syntax::Symbol, ctx: Option<(usize, usize)>) -> Option<u32> {
+        let m = self.m;
+        let named = |g: &stc_sema::GlobalId| m.globals[g.0 as usize].name == name;
+        if let Some((c, r)) = ctx {
+            let conf = &m.configs[c];
+            if let Some(g) = conf
+                .resources
+                .get(r)
+                .and_then(|res| res.globals.iter().find(|g| named(g)))
+            {
+                return self.global_off.get(g.0 as usize).copied();
+            }
+            if let Some(g) = conf.globals.iter().find(|g| named(g)) {
+                return self.global_off.get(g.0 as usize).copied();
+            }
+        }
+        let in_config = |gi: usize| {
+            m.configs.iter().any(|c| {
+                c.globals.iter().any(|g| g.0 as usize == gi)
+                    || c.resources
+                        .iter()
+                        .any(|r| r.globals.iter().any(|g| g.0 as usize == gi))
+            })
+        };
+        let top = (0..m.globals.len()).find(|&i| m.globals[i].name == name && !in_config(i));
+        let any = (0..m.globals.len()).find(|&i| m.globals[i].name == name);
+        top.or(any).and_then(|i| self.global_off.get(i).copied())
+    }
+
+    fn instance(&mut self, p: PouId, ctx: Option<(usize, usize)>) -> Result<u32, CompileError> {
+        let lay = self.l.pous[p.0 as usize].instance;
+        let off = self.alloc_data(lay.size, lay.align)?;
+        self.init_instance(p, off, ctx, &[]);
+        Ok(off)
+    }
+
+    fn program_instance(
+        &mut self,
+        name: String,
+        p: PouId,
+        task: Option<u32>,
+        ctx: Option<(usize, usize)>,
+        def: &stc_sema::ProgramInstDef,
+    ) -> Result<ProgramInst, CompileError> {
+        let off = self.instance(p, ctx)?;
+        let mut inputs = Vec::new();
+        let mut outputs = Vec::new();
+        for (v, src) in &def.inputs {
+            let var = self.m.pous[p.0 as usize].var(*v);
+            let ty = self.ty_ref(var.ty);
+            if let Some(s) = self.source(src, var.ty) {
+                inputs.push((self.l.var_offset(p, *v), ty, s));
+            }
+        }
+        for (v, dst) in &def.outputs {
+            let var = self.m.pous[p.0 as usize].var(*v);
+            let ty = self.ty_ref(var.ty);
+            if let Some(s) = self.source(dst, var.ty) {
+                outputs.push((self.l.var_offset(p, *v), ty, s));
+            }
+        }
+        Ok(ProgramInst {
+            name,
+            pou: p.0,
+            offset: off,
+            task,
+            inputs,
+            outputs,
+        })
+    }
+
+    /// A configuration data reference as an address.
+    fn source(&mut self, r: &stc_sema::DataRef, ty: TypeId) -> Option<Source> {
+        match r {
+            stc_sema::DataRef::Global(g) => {
+                let t = self.m.globals[g.0 as usize].ty;
+                let ty = self.ty_ref(t);
+                Some(Source::Addr {
+                    offset: *self.global_off.get(g.0 as usize)?,
+                    ty,
+                })
+            }
+            stc_sema::DataRef::Direct(a) => {
+                let off = self.io_slot(a, addr_type(self.m, a));
+                let t = addr_type(self.m, a);
+                Some(Source::Addr {
+                    offset: off,
+                    ty: self.ty_ref(t),
+                })
+            }
+            stc_sema::DataRef::Const(v) => {
+                let bytes = self.value_bytes(ty, v);
+                let off = self.alloc_data(bytes.len() as u32, 8).ok()?;
+                self.data[off as usize..off as usize + bytes.len()].copy_from_slice(&bytes);
+                Some(Source::Addr {
+                    offset: off,
+                    ty: self.ty_ref(ty),
+                })
+            }
+        }
+    }
+
+    /// The bytes of a value of type `t`, as stored in memory.
+    fn value_bytes(&self, t: TypeId, v: &Value) -> Vec<u8> {
+        let size = self.size_of(t).max(1);
+        let mut buf = vec![0u8; size as usize];
+        match self.m.types.kind(t) {
+            TypeKind::String { wide, len } => {
+                let v = match (wide, v) {
+                    (false, Value::WStr(_)) | (true, Value::Str(_)) => stc_values::convert(
+                        if *wide {
+                            ElemType::String
+                        } else {
+                            ElemType::Wstring
+                        },
+                        if *wide {
+                            ElemType::Wstring
+                        } else {
+                            ElemType::String
+                        },
+                        v,
+                    )
+                    .unwrap_or_else(|_| v.clone()),
+                    _ => v.clone(),
+                };
+                write_string(&mut buf, 0, *wide, *len, &v);
+            }
+            _ => {
+                if let Some(e) = self.scalar(t) {
+                    write_scalar(&mut buf, 0, e, v);
+                }
+            }
+        }
+        buf
+    }
+
+    // ----- POU variables and frames -------------------------------------------
+
+    fn pou_vars(&mut self, p: PouId) {
+        let m = self.m;
+        let pou = &m.pous[p.0 as usize];
+        let mut vars = Vec::new();
+        for (i, v) in pou.vars.iter().enumerate() {
+            let ty = self.ty_ref(v.ty);
+            let kind = match (v.hidden, v.section) {
+                (Some(_), _) => VarKind::Hidden,
+                (_, Section::Input) => VarKind::Input,
+                (_, Section::Output) => VarKind::Output,
+                (_, Section::InOut) => VarKind::InOut,
+                (_, Section::Var) => VarKind::Var,
+                (_, Section::Temp) => VarKind::Temp,
+                (_, Section::External) => VarKind::External,
+                (_, Section::Global) => VarKind::Global,
+                (_, Section::Result) => VarKind::Result,
+            };
+            let in_frame = self.l.pous[p.0 as usize].in_frame[i];
+            vars.push(VarDesc {
+                name: self.m.name(v.name).to_string(),
+                ty,
+                kind,
+                offset: if in_frame {
+                    0
+                } else {
+                    self.l.pous[p.0 as usize].offsets[i]
+                },
+                in_frame,
+                is_ref: v.storage == Storage::Ref,
+            });
+        }
+        self.pous[p.0 as usize].vars = vars;
+    }
+
+    /// POUs in an order where every callee comes before its callers.
+    fn callee_order(&self) -> Vec<PouId> {
+        let n = self.m.pous.len();
+        let mut deps: Vec<Vec<usize>> = vec![Vec::new(); n];
+        for (i, p) in self.m.pous.iter().enumerate() {
+            visit_calls(&p.body, &mut |c| deps[i].push(c.0 as usize));
+        }
+        let mut order = Vec::with_capacity(n);
+        let mut state = vec![0u8; n];
+        for start in 0..n {
+            if state[start] != 0 {
+                continue;
+            }
+            let mut stack = vec![(start, 0usize)];
+            state[start] = 1;
+            while let Some(&mut (v, ref mut i)) = stack.last_mut() {
+                if *i < deps[v].len() {
+                    let w = deps[v][*i];
+                    *i += 1;
+                    if state[w] == 0 {
+                        state[w] = 1;
+                        stack.push((w, 0));
+                    }
+                } else {
+                    state[v] = 2;
+                    order.push(PouId(v as u32));
+                    stack.pop();
+                }
+            }
+        }
+        order
+    }
+
+    /// The deepest chain of frames any program can build.
+    fn stack_need(&self) -> u32 {
+        // Frames nest inside their caller's frame (a call reserves its
+        // callee's frame among its temporaries), so a program's own frame
+        // size already covers its whole call tree.
+        self.pous.iter().map(|p| p.frame_size).max().unwrap_or(0) + 64
+    }
+
+    fn compile_pou(&mut self, p: PouId) -> Result<(), CompileError> {
+        let m = self.m;
+        let pou = &m.pous[p.0 as usize];
+        self.cur = p;
+        self.frame = Frame::default();
+        let function = pou.kind == AstPouKind::Function;
+        // Frame variables: a function's inputs first (the caller writes them),
+        // then the rest; then temporaries.
+        let mut order: Vec<usize> = (0..pou.vars.len())
+            .filter(|&i| self.l.pous[p.0 as usize].in_frame[i])
+            .collect();
+        order.sort_by_key(|&i| {
+            if function && pou.vars[i].section == Section::Input {
+                0
+            } else {
+                1
+            }
+        });
+        let mut init_at = 0;
+        for &i in &order {
+            let v = &pou.vars[i];
+            let lay = if v.storage == Storage::Ref {
+                stc_ir::layout::Layout { size: 4, align: 4 }
+            } else {
+                self.l.of(v.ty)
+            };
+            let off = align_up(self.frame.top, lay.align);
+            self.frame.var_off.insert(i as u32, off);
+            self.frame.top = off + lay.size;
+            if function && v.section == Section::Input {
+                init_at = self.frame.top;
+            }
+        }
+        self.frame.top = align_up(self.frame.top, 8);
+        let vars_end = self.frame.top;
+        self.frame.max = vars_end;
+        // The template: initial values of the frame variables after `init_at`.
+        let mut template = vec![0u8; (vars_end - init_at) as usize];
+        for &i in &order {
+            let v = &pou.vars[i];
+            let off = self.frame.var_off[&(i as u32)];
+            if off < init_at || v.storage == Storage::Ref {
+                continue;
+            }
+            let mut scratch = std::mem::take(&mut self.data);
+            let base = scratch.len() as u32;
+            scratch.resize((base + self.size_of(v.ty)) as usize, 0);
+            self.data = scratch;
+            self.write_init(v.ty, base, v.init.as_ref(), None);
+            let bytes = self.data[base as usize..].to_vec();
+            self.data.truncate(base as usize);
+            let s = (off - init_at) as usize;
+            template[s..s + bytes.len()].copy_from_slice(&bytes);
+        }
+        let template = self.const_bytes(&template, 8);
+        let entry = self.code.len() as u32;
+        let file = {
+            let f = &pou.file;
+            match self.files.iter().position(|x| x == f) {
+                Some(i) => i as u32,
+                None => {
+                    self.files.push(f.clone());
+                    (self.files.len() - 1) as u32
+                }
+            }
+        };
+        let _ = file;
+        self.block(&pou.body)?;
+        self.emit(Instr::Ret {});
+        let size = align_up(self.frame.max, 8);
+        self.frames[p.0 as usize] = Some(FrameInfo {
+            var_off: self.frame.var_off.clone(),
+            size,
+        });
+        let code = &mut self.pous[p.0 as usize];
+        code.entry = entry;
+        code.frame_size = size;
+        code.frame_init_at = init_at;
+        code.frame_template = (template, vars_end - init_at);
+        for (i, d) in code.vars.iter_mut().enumerate() {
+            if d.in_frame {
+                d.offset = self.frame.var_off.get(&(i as u32)).copied().unwrap_or(0);
+            }
+        }
+        Ok(())
+    }
+
+    // ----- constants and temporaries -------------------------------------------
+
+    fn const_bytes(&mut self, bytes: &[u8], align: u32) -> u32 {
+        if let Some(&off) = self.const_map.get(bytes) {
+            return off;
+        }
+        let off = align_up(self.consts.len() as u32, align.max(1));
+        self.consts.resize(off as usize, 0);
+        self.consts.extend_from_slice(bytes);
+        self.const_map.insert(bytes.to_vec(), off);
+        off
+    }
+
+    /// An operand holding a constant.
+    fn konst(&mut self, t: TypeId, v: &Value) -> Op {
+        let bytes = self.value_bytes(t, v);
+        let off = self.const_bytes(&bytes, 8);
+        Op::abs(self.data.len() as u32 + off)
+    }
+
+    fn const_i64(&mut self, v: i64) -> Op {
+        let off = self.const_bytes(&v.to_le_bytes(), 8);
+        Op::abs(self.data.len() as u32 + off)
+    }
+
+    fn const_u32(&mut self, v: u32) -> Op {
+        let off = self.const_bytes(&v.to_le_bytes(), 4);
+        Op::abs(self.data.len() as u32 + off)
+    }
+
+    fn temp(&mut self, size: u32) -> Op {
+        let off = align_up(self.frame.top, 8);
+        self.frame.top = off + size.max(1);
+        self.frame.max = self.frame.max.max(self.frame.top);
+        Op::frame(off)
+    }
+
+    fn temp_of(&mut self, t: TypeId) -> Op {
+        let s = self.size_of(t);
+        self.temp(s)
+    }
+
+    fn emit(&mut self, i: Instr) -> usize {
+        self.code.push(i);
+        self.code.len() - 1
+    }
+
+    fn here(&self) -> u32 {
+        self.code.len() as u32
+    }
+
+    fn patch(&mut self, at: usize, target: u32) {
+        match &mut self.code[at] {
+            Instr::Jmp { t }
+            | Instr::Jz { t, .. }
+            | Instr::Jnz { t, .. }
+            | Instr::JltI32 { t, .. } => *t = Tgt(target),
+            _ => {}
+        }
+    }
+
+    // ----- statements ------------------------------------------------------------
+
+    fn block(&mut self, stmts: &[Stmt]) -> Result<(), CompileError> {
+        for s in stmts {
+            self.stmt(s)?;
+        }
+        Ok(())
+    }
+
+    fn stmt(&mut self, s: &Stmt) -> Result<(), CompileError> {
+        let file = self
+            .files
+            .iter()
+            .position(|f| *f == self.m.pous[self.cur.0 as usize].file)
+            .unwrap_or(0) as u32;
+        let pc = self.here();
+        if self.lines.last().is_none_or(|l| l.pc != pc) {
+            self.lines.push(LineEntry {
+                pc,
+                pou: self.cur.0,
+                file,
+                line: s.line,
+                col: s.col,
+            });
+        } else if let Some(l) = self.lines.last_mut() {
+            *l = LineEntry {
+                pc,
+                pou: self.cur.0,
+                file,
+                line: s.line,
+                col: s.col,
+            };
+        }
+        let mark = self.frame.top;
+        match &s.kind {
+            StmtKind::Assign { place, value } => self.assign(place, value)?,
+            StmtKind::CallFb {
+                instance,
+                fb,
+                inputs,
+                inouts,
+                outputs,
+            } => self.call_fb(instance, *fb, inputs, inouts, outputs)?,
+            StmtKind::Eval(e) => {
+                self.expr(e)?;
+            }
+            StmtKind::If {
+                cond,
+                then_body,
+                else_body,
+            } => {
+                let c = self.expr(cond)?;
+                self.frame.top = mark;
+                let jz = self.emit(Instr::Jz { c, t: Tgt(0) });
+                self.block(then_body)?;
+                if else_body.is_empty() {
+                    let end = self.here();
+                    self.patch(jz, end);
+                } else {
+                    let jmp = self.emit(Instr::Jmp { t: Tgt(0) });
+                    let el = self.here();
+                    self.patch(jz, el);
+                    self.block(else_body)?;
+                    let end = self.here();
+                    self.patch(jmp, end);
+                }
+            }
+            StmtKind::Switch {
+                selector,
+                arms,
+                default,
+            } => self.switch(selector, arms, default)?,
+            StmtKind::Loop { body, latch } => {
+                let top = self.here();
+                self.loops.push(LoopCtx {
+                    breaks: Vec::new(),
+                    continues: Vec::new(),
+                });
+                self.block(body)?;
+                let latch_at = self.here();
+                // The latch belongs to the loop but runs outside its CONTINUE scope.
+                self.block(latch)?;
+                self.emit(Instr::Jmp { t: Tgt(top) });
+                let end = self.here();
+                let ctx = self.loops.pop().unwrap_or(LoopCtx {
+                    breaks: Vec::new(),
+                    continues: Vec::new(),
+                });
+                for b in ctx.breaks {
+                    self.patch(b, end);
+                }
+                for c in ctx.continues {
+                    self.patch(c, latch_at);
+                }
+            }
+            StmtKind::Break => {
+                let j = self.emit(Instr::Jmp { t: Tgt(0) });
+                if let Some(l) = self.loops.last_mut() {
+                    l.breaks.push(j);
+                }
+            }
+            StmtKind::Continue => {
+                let j = self.emit(Instr::Jmp { t: Tgt(0) });
+                if let Some(l) = self.loops.last_mut() {
+                    l.continues.push(j);
+                }
+            }
+            StmtKind::Return => {
+                self.emit(Instr::Ret {});
+            }
+            StmtKind::Fault(k) => {
+                self.emit(Instr::Fault {
+                    kind: fault_code(*k),
+                });
+            }
+        }
+        self.frame.top = mark;
+        Ok(())
+    }
+
+    fn switch(
+        &mut self,
+        selector: &Expr,
+        arms: &[stc_ir::SwitchArm],
+        default: &[Stmt],
+    ) -> Result<(), CompileError> {
+        let sel = self.expr(selector)?;
+        let t = selector.ty;
+        let num = self.num(t).unwrap_or(Num::I64);
+        let mut to_body = Vec::new();
+        let flag = self.temp(1);
+        for (ai, arm) in arms.iter().enumerate() {
+            for &(lo, hi) in &arm.ranges {
+                let lo_op = self.konst(t, &Value::Int(lo));
+                if lo == hi {
+                    let cmp = self.cmp_instr(BinOp::Eq, num, flag, sel, lo_op);
+                    self.emit(cmp);
+                } else {
+                    let hi_op = self.konst(t, &Value::Int(hi));
+                    let f2 = self.temp(1);
+                    let c1 = self.cmp_instr(BinOp::Le, num, flag, lo_op, sel);
+                    self.emit(c1);
+                    let c2 = self.cmp_instr(BinOp::Le, num, f2, sel, hi_op);
+                    self.emit(c2);
+                    self.emit(Instr::And8 {
+                        d: flag,
+                        a: flag,
+                        b: f2,
+                    });
+                }
+                let j = self.emit(Instr::Jnz { c: flag, t: Tgt(0) });
+                to_body.push((j, ai));
+            }
+        }
+        let to_default = self.emit(Instr::Jmp { t: Tgt(0) });
+        let mut ends = Vec::new();
+        for (ai, arm) in arms.iter().enumerate() {
+            let at = self.here();
+            for (j, a) in &to_body {
+                if *a == ai {
+                    self.patch(*j, at);
+                }
+            }
+            self.block(&arm.body)?;
+            ends.push(self.emit(Instr::Jmp { t: Tgt(0) }));
+        }
+        let d = self.here();
+        self.patch(to_default, d);
+        self.block(default)?;
+        let end = self.here();
+        for j in ends {
+            self.patch(j, end);
+        }
+        Ok(())
+    }
+
+    fn assign(&mut self, place: &Place, value: &Expr) -> Result<(), CompileError> {
+        let pl = self.place(place)?;
+        match (pl.loc, pl.part) {
+            (Loc::At(d), None)
+                if self.is_scalar(place.ty) && !matches!(value.kind, ExprKind::Check { .. }) =>
+            {
+                self.expr_into(value, d)?;
+            }
+            _ => {
+                let v = self.expr(value)?;
+                self.store(pl, v, value.ty, place.ty)?;
+            }
+        }
+        Ok(())
+    }
+
+    fn is_scalar(&self, t: TypeId) -> bool {
+        self.num(t).is_some()
+    }
+
+    /// Stores the value at `v` (of type `vt`) into a place of type `pt`.
+    fn store(&mut self, pl: PlaceLoc, v: Op, vt: TypeId, pt: TypeId) -> Result<(), CompileError> {
+        if let Some((width, size, index)) = pl.part {
+            // Read-modify-write of the whole bit string.
+            let word = self.load_loc(pl.loc, width / 8)?;
+            self.emit(Instr::SetPart {
+                d: word,
+                a: v,
+                width,
+                part: size.bits(),
+                index,
+            });
+            return self.store_loc(pl.loc, word, width / 8);
+        }
+        match self.m.types.kind(pt) {
+            TypeKind::String { wide, len } => {
+                let unit = if *wide { 2 } else { 1 };
+                match pl.loc {
+                    Loc::At(d) => {
+                        self.emit(Instr::StrCopy {
+                            d,
+                            a: v,
+                            cap: *len,
+                            unit,
+                        });
+                    }
+                    Loc::Ptr { .. } => {
+                        let size = self.size_of(pt);
+                        let t = self.temp(size);
+                        self.emit(Instr::StrCopy {
+                            d: t,
+                            a: v,
+                            cap: *len,
+                            unit,
+                        });
+                        self.store_loc(pl.loc, t, size)?;
+                    }
+                }
+                let _ = vt;
+                Ok(())
+            }
+            _ => {
+                let size = self.size_of(pt);
+                self.store_loc(pl.loc, v, size)
+            }
+        }
+    }
+
+    fn store_loc(&mut self, loc: Loc, v: Op, size: u32) -> Result<(), CompileError> {
+        match loc {
+            Loc::At(d) => {
+                self.mov(d, v, size);
+            }
+            Loc::Ptr { ptr, off } => {
+                self.emit(Instr::Store {
+                    p: ptr,
+                    a: v,
+                    off,
+                    len: size,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    fn load_loc(&mut self, loc: Loc, size: u32) -> Result<Op, CompileError> {
+        Ok(match loc {
+            Loc::At(a) => {
+                let t = self.temp(size);
+                self.mov(t, a, size);
+                t
+            }
+            Loc::Ptr { ptr, off } => {
+                let t = self.temp(size);
+                self.emit(Instr::Load {
+                    d: t,
+                    p: ptr,
+                    off,
+                    len: size,
+                });
+                t
+            }
+        })
+    }
+
+    fn mov(&mut self, d: Op, a: Op, size: u32) {
+        if d == a {
+            return;
+        }
+        match size {
+            1 => self.emit(Instr::Mov1 { d, a }),
+            2 => self.emit(Instr::Mov2 { d, a }),
+            4 => self.emit(Instr::Mov4 { d, a }),
+            8 => self.emit(Instr::Mov8 { d, a }),
+            0 => 0,
+            n => self.emit(Instr::Copy { d, a, len: n }),
+        };
+    }
+
+    // ----- places ------------------------------------------------------------------
+
+    fn var_loc(&mut self, v: VarId) -> Loc {
+        let pou = &self.m.pous[self.cur.0 as usize];
+        let var = pou.var(v);
+        let in_frame = self.l.pous[self.cur.0 as usize].in_frame[v.0 as usize];
+        let slot = if in_frame {
+            Op::frame(self.frame.var_off.get(&v.0).copied().unwrap_or(0))
+        } else {
+            Op::this(self.l.pous[self.cur.0 as usize].offsets[v.0 as usize])
+        };
+        if var.storage == Storage::Ref {
+            Loc::Ptr { ptr: slot, off: 0 }
+        } else {
+            Loc::At(slot)
+        }
+    }
+
+    fn place(&mut self, p: &Place) -> Result<PlaceLoc, CompileError> {
+        let mut loc = match &p.root {
+            Root::Var(v) => self.var_loc(*v),
+            Root::Global(g) => Loc::At(Op::abs(
+                self.global_off.get(g.0 as usize).copied().unwrap_or(0),
+            )),
+            Root::Direct(a) => {
+                let off = self.io_map.get(a).copied().unwrap_or(0);
+                Loc::At(Op::abs(off))
+            }
+        };
+        // The type of the value reached so far, to find offsets.
+        let mut ty = match &p.root {
+            Root::Var(v) => self.m.pous[self.cur.0 as usize].var(*v).ty,
+            Root::Global(g) => self.m.globals[g.0 as usize].ty,
+            Root::Direct(a) => addr_type(self.m, a),
+        };
+        let mut part = None;
+        for proj in &p.proj {
+            match proj {
+                Proj::Field(i) => {
+                    let off = self.l.field_offset(ty, *i);
+                    loc = offset_loc(loc, off);
+                    ty = match self.m.types.kind(ty) {
+                        TypeKind::Struct { fields } => fields
+                            .get(*i as usize)
+                            .map(|f| f.ty)
+                            .unwrap_or(TypeId::ERROR),
+                        _ => TypeId::ERROR,
+                    };
+                }
+                Proj::FbVar(fb, v) => {
+                    let off = self.l.var_offset(*fb, *v);
+                    loc = offset_loc(loc, off);
+                    ty = self.m.pous[fb.0 as usize].var(*v).ty;
+                }
+                Proj::Index(idx) => {
+                    let (dims, elem) = match self.m.types.kind(ty).clone() {
+                        TypeKind::Array { dims, elem } => (dims, elem),
+                        _ => return Err(CompileError::Unsupported("indexing a non-array".into())),
+                    };
+                    let stride = self.l.stride(&self.m.types, ty);
+                    // Strides per dimension: the element stride times the
+                    // counts of the dimensions after it.
+                    let counts: Vec<i128> = dims.iter().map(|(l, h)| h - l + 1).collect();
+                    let mut mults = vec![stride as i128; dims.len()];
+                    for k in (0..dims.len().saturating_sub(1)).rev() {
+                        mults[k] = mults[k + 1] * counts[k + 1];
+                    }
+                    let all_const = idx
+                        .iter()
+                        .all(|(e, _, _)| matches!(e.kind, ExprKind::Const(_)));
+                    if all_const {
+                        let mut off: i128 = 0;
+                        for (k, (e, lo, _)) in idx.iter().enumerate() {
+                            if let ExprKind::Const(Value::Int(i)) = &e.kind {
+                                off += (i - lo) * mults[k];
+                            }
+                        }
+                        loc = offset_loc(loc, off.max(0) as u32);
+                    } else {
+                        // A pointer to the array, then one checked step per index.
+                        let ptr = self.temp(4);
+                        match loc {
+                            Loc::At(a) => {
+                                self.emit(Instr::Lea { d: ptr, a });
+                            }
+                            Loc::Ptr { ptr: p0, off } => {
+                                let c = self.const_u32(off);
+                                self.emit(Instr::Add32 {
+                                    d: ptr,
+                                    a: p0,
+                                    b: c,
+                                });
+                            }
+                        }
+                        for (k, (e, lo, hi)) in idx.iter().enumerate() {
+                            let i = self.expr(e)?;
+                            let i64op = self.widen_to_i64(i, e.ty);
+                            let lo_op = self.const_i64(*lo as i64);
+                            let count = (hi - lo + 1).clamp(0, u32::MAX as i128) as u32;
+                            self.emit(Instr::Index {
+                                d: ptr,
+                                a: ptr,
+                                idx: i64op,
+                                lo: lo_op,
+                                count,
+                                stride: mults[k].clamp(0, u32::MAX as i128) as u32,
+                            });
+                        }
+                        loc = Loc::Ptr { ptr, off: 0 };
+                    }
+                    // A partial index (`a[i]` of `a[i][j]`) leaves the rest.
+                    ty = if idx.len() < dims.len() { p.ty } else { elem };
+                }
+                Proj::Part(size, index) => {
+                    let width = self.scalar(ty).map(elem_size).unwrap_or(8) * 8;
+                    part = Some((width, *size, *index));
+                }
+            }
+        }
+        Ok(PlaceLoc { loc, part })
+    }
+
+    /// An 8-byte signed copy of an integer operand (for indexing).
+    fn widen_to_i64(&mut self, a: Op, t: TypeId) -> Op {
+        match self.num(t) {
+            Some(Num::I64) => a,
+            Some(n) => {
+                let d = self.temp(8);
+                self.emit(Instr::Cvt {
+                    d,
+                    a,
+                    from: n.code(),
+                    to: Num::I64.code(),
+                });
+                d
+            }
+            None => a,
+        }
+    }
+
+    // ----- expressions ---------------------------------------------------------------
+
+    /// Evaluates an expression; returns the operand holding its value.
+    fn expr(&mut self, e: &Expr) -> Result<Op, CompileError> {
+        match &e.kind {
+            ExprKind::Const(v) => Ok(self.konst(e.ty, v)),
+            ExprKind::Load(p) => {
+                let pl = self.place(p)?;
+                match (pl.loc, pl.part) {
+                    (Loc::At(a), None) => Ok(a),
+                    (loc, None) => {
+                        let size = self.size_of(e.ty);
+                        self.load_loc(loc, size)
+                    }
+                    (loc, Some((width, size, index))) => {
+                        let word = match loc {
+                            Loc::At(a) => a,
+                            l => self.load_loc(l, width / 8)?,
+                        };
+                        let d = self.temp(8);
+                        self.emit(Instr::GetPart {
+                            d,
+                            a: word,
+                            width,
+                            part: size.bits(),
+                            index,
+                        });
+                        Ok(d)
+                    }
+                }
+            }
+            _ => {
+                let d = self.temp_of(e.ty);
+                self.expr_into(e, d)?;
+                Ok(d)
+            }
+        }
+    }
+
+    /// Evaluates an expression into `d` (which its subexpressions never use).
+    fn expr_into(&mut self, e: &Expr, d: Op) -> Result<(), CompileError> {
+        match &e.kind {
+            ExprKind::Const(_) | ExprKind::Load(_) => {
+                let a = self.expr(e)?;
+                let size = self.size_of(e.ty);
+                if let TypeKind::String { wide, len } = self.m.types.kind(e.ty) {
+                    let unit = if *wide { 2 } else { 1 };
+                    self.emit(Instr::StrCopy {
+                        d,
+                        a,
+                        cap: *len,
+                        unit,
+                    });
+                } else {
+                    self.mov(d, a, size);
+                }
+            }
+            ExprKind::Unary(op, x) => {
+                let a = self.expr(x)?;
+                let num = self.num(x.ty);
+                let i = match (op, num) {
+                    (UnOp::Not, Some(Num::B)) => Some(Instr::NotB { d, a }),
+                    (UnOp::Not, Some(n)) if !n.is_float() => Some(match n.size() {
+                        1 => Instr::Not8 { d, a },
+                        2 => Instr::Not16 { d, a },
+                        4 => Instr::Not32 { d, a },
+                        _ => Instr::Not64 { d, a },
+                    }),
+                    (UnOp::Neg, Some(Num::F32)) => Some(Instr::NegF32 { d, a }),
+                    (UnOp::Neg, Some(Num::F64)) => Some(Instr::NegF64 { d, a }),
+                    (UnOp::Neg, Some(n)) if n != Num::B => Some(match n.size() {
+                        1 => Instr::Neg8 { d, a },
+                        2 => Instr::Neg16 { d, a },
+                        4 => Instr::Neg32 { d, a },
+                        _ => Instr::Neg64 { d, a },
+                    }),
+                    _ => None,
+                };
+                match i {
+                    Some(i) => {
+                        self.emit(i);
+                    }
+                    None => {
+                        self.generic(StdOp::Unary(*op), &[(a, x.ty)], (d, e.ty));
+                    }
+                }
+            }
+            ExprKind::Binary(op, x, y) => {
+                let a = self.expr(x)?;
+                let b = self.expr(y)?;
+                match self.native_binary(*op, x.ty, y.ty, e.ty, d, a, b) {
+                    Some(i) => {
+                        self.emit(i);
+                    }
+                    None => {
+                        self.generic(StdOp::Binary(*op), &[(a, x.ty), (b, y.ty)], (d, e.ty));
+                    }
+                }
+            }
+            ExprKind::Convert(x) => {
+                let a = self.expr(x)?;
+                let (from, to) = (self.scalar(x.ty), self.scalar(e.ty));
+                let plain = |t: Option<ElemType>| {
+                    t.is_some_and(|t| Num::of(t).is_some() && !stc_values::is_time_like(t))
+                };
+                match (from, to) {
+                    (Some(f), Some(t)) if f == t => {
+                        let size = self.size_of(e.ty);
+                        if let TypeKind::String { wide, len } = self.m.types.kind(e.ty) {
+                            let unit = if *wide { 2 } else { 1 };
+                            self.emit(Instr::StrCopy {
+                                d,
+                                a,
+                                cap: *len,
+                                unit,
+                            });
+                        } else {
+                            self.mov(d, a, size);
+                        }
+                    }
+                    (Some(f), Some(t)) if plain(from) && plain(to) => {
+                        let (nf, nt) = (
+                            Num::of(f).unwrap_or(Num::I64),
+                            Num::of(t).unwrap_or(Num::I64),
+                        );
+                        self.emit(Instr::Cvt {
+                            d,
+                            a,
+                            from: nf.code(),
+                            to: nt.code(),
+                        });
+                    }
+                    _ => {
+                        self.generic(StdOp::Convert, &[(a, x.ty)], (d, e.ty));
+                    }
+                }
+            }
+            ExprKind::Check { value, lo, hi } => {
+                let v = self.expr(value)?;
+                let num = self.num(e.ty).unwrap_or(Num::I64);
+                let lo_op = self.konst(e.ty, &Value::Int(*lo));
+                let hi_op = self.konst(e.ty, &Value::Int(*hi));
+                self.emit(Instr::Check {
+                    a: v,
+                    lo: lo_op,
+                    hi: hi_op,
+                    num: num.code(),
+                });
+                let size = self.size_of(e.ty);
+                self.mov(d, v, size);
+            }
+            ExprKind::CallFn {
+                func,
+                inputs,
+                inouts,
+                outputs,
+            } => {
+                let res = self.call_fn(*func, inputs, inouts, outputs)?;
+                if let Some(r) = res {
+                    let size = self.size_of(e.ty);
+                    if let TypeKind::String { wide, len } = self.m.types.kind(e.ty) {
+                        let unit = if *wide { 2 } else { 1 };
+                        self.emit(Instr::StrCopy {
+                            d,
+                            a: r,
+                            cap: *len,
+                            unit,
+                        });
+                    } else {
+                        self.mov(d, r, size);
+                    }
+                }
+            }
+            ExprKind::Intrinsic { func, args } => {
+                let mut ops = Vec::with_capacity(args.len());
+                for a in args {
+                    let o = self.expr(a)?;
+                    ops.push((o, a.ty));
+                }
+                let op = match func {
+                    stc_values::Intrinsic::Trunc { .. } => StdOp::Trunc,
+                    f => StdOp::Call(*f),
+                };
+                self.generic(op, &ops, (d, e.ty));
+            }
+            ExprKind::CurTime => {
+                self.emit(Instr::CurTime { d });
+            }
+        }
+        Ok(())
+    }
+
+    /// A typed instruction for `a op b`, if the operation is native.
+    #[allow(clippy::too_many_arguments)]
+    fn native_binary(
+        &self,
+        op: BinOp,
+        lt: TypeId,
+        rt: TypeId,
+        res: TypeId,
+        d: Op,
+        a: Op,
+        b: Op,
+    ) -> Option<Instr> {
+        let (ls, rs) = (self.scalar(lt)?, self.scalar(rt)?);
+        if ls != rs {
+            return None;
+        }
+        let n = Num::of(ls)?;
+        let cmp = matches!(
+            op,
+            BinOp::Eq | BinOp::Ne | BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge
+        );
+        if !cmp {
+            // Arithmetic natively only where the result has the operands'
+            // type and no calendar wraps (TOD, DATE, DT go through stc_values).
+            if self.scalar(res) != Some(ls)
+                || matches!(
+                    ls,
+                    ElemType::Tod
+                        | ElemType::Ltod
+                        | ElemType::Date
+                        | ElemType::Ldate
+                        | ElemType::Dt
+                        | ElemType::Ldt
+                )
+            {
+                return None;
+            }
+        }
+        Some(match op {
+            BinOp::Eq | BinOp::Ne | BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge => {
+                return Some(self.cmp_instr(op, n, d, a, b))
+            }
+            BinOp::Add => match n {
+                Num::F32 => Instr::AddF32 { d, a, b },
+                Num::F64 => Instr::AddF64 { d, a, b },
+                Num::B => return None,
+                _ => width_instr(
+                    n.size(),
+                    [
+                        Instr::Add8 { d, a, b },
+                        Instr::Add16 { d, a, b },
+                        Instr::Add32 { d, a, b },
+                        Instr::Add64 { d, a, b },
+                    ],
+                ),
+            },
+            BinOp::Sub => match n {
+                Num::F32 => Instr::SubF32 { d, a, b },
+                Num::F64 => Instr::SubF64 { d, a, b },
+                Num::B => return None,
+                _ => width_instr(
+                    n.size(),
+                    [
+                        Instr::Sub8 { d, a, b },
+                        Instr::Sub16 { d, a, b },
+                        Instr::Sub32 { d, a, b },
+                        Instr::Sub64 { d, a, b },
+                    ],
+                ),
+            },
+            BinOp::Mul => match n {
+                Num::F32 => Instr::MulF32 { d, a, b },
+                Num::F64 => Instr::MulF64 { d, a, b },
+                Num::B => return None,
+                _ => width_instr(
+                    n.size(),
+                    [
+                        Instr::Mul8 { d, a, b },
+                        Instr::Mul16 { d, a, b },
+                        Instr::Mul32 { d, a, b },
+                        Instr::Mul64 { d, a, b },
+                    ],
+                ),
+            },
+            BinOp::Div => match n {
+                Num::F32 => Instr::DivF32 { d, a, b },
+                Num::F64 => Instr::DivF64 { d, a, b },
+                Num::I8 => Instr::DivI8 { d, a, b },
+                Num::I16 => Instr::DivI16 { d, a, b },
+                Num::I32 => Instr::DivI32 { d, a, b },
+                Num::I64 => Instr::DivI64 { d, a, b },
+                Num::U8 => Instr::DivU8 { d, a, b },
+                Num::U16 => Instr::DivU16 { d, a, b },
+                Num::U32 => Instr::DivU32 { d, a, b },
+                Num::U64 => Instr::DivU64 { d, a, b },
+                Num::B => return None,
+            },
+            BinOp::Mod => match n {
+                Num::I8 => Instr::ModI8 { d, a, b },
+                Num::I16 => Instr::ModI16 { d, a, b },
+                Num::I32 => Instr::ModI32 { d, a, b },
+                Num::I64 => Instr::ModI64 { d, a, b },
+                Num::U8 => Instr::ModU8 { d, a, b },
+                Num::U16 => Instr::ModU16 { d, a, b },
+                Num::U32 => Instr::ModU32 { d, a, b },
+                Num::U64 => Instr::ModU64 { d, a, b },
+                _ => return None,
+            },
+            BinOp::And | BinOp::Or | BinOp::Xor if !n.is_float() => {
+                let i = match op {
+                    BinOp::And => [
+                        Instr::And8 { d, a, b },
+                        Instr::And16 { d, a, b },
+                        Instr::And32 { d, a, b },
+                        Instr::And64 { d, a, b },
+                    ],
+                    BinOp::Or => [
+                        Instr::Or8 { d, a, b },
+                        Instr::Or16 { d, a, b },
+                        Instr::Or32 { d, a, b },
+                        Instr::Or64 { d, a, b },
+                    ],
+                    _ => [
+                        Instr::Xor8 { d, a, b },
+                        Instr::Xor16 { d, a, b },
+                        Instr::Xor32 { d, a, b },
+                        Instr::Xor64 { d, a, b },
+                    ],
+                };
+                width_instr(n.size(), i)
+            }
+            _ => return None,
+        })
+    }
+
+    /// A comparison (`>` and `>=` by swapping to `<` and `<=`).
+    fn cmp_instr(&self, op: BinOp, n: Num, d: Op, a: Op, b: Op) -> Instr {
+        let (op, a, b) = match op {
+            BinOp::Gt => (BinOp::Lt, b, a),
+            BinOp::Ge => (BinOp::Le, b, a),
+            o => (o, a, b),
+        };
+        match (op, n) {
+            (BinOp::Eq, Num::F32) => Instr::EqF32 { d, a, b },
+            (BinOp::Eq, Num::F64) => Instr::EqF64 { d, a, b },
+            (BinOp::Eq, n) => width_instr(
+                n.size(),
+                [
+                    Instr::Eq8 { d, a, b },
+                    Instr::Eq16 { d, a, b },
+                    Instr::Eq32 { d, a, b },
+                    Instr::Eq64 { d, a, b },
+                ],
+            ),
+            (BinOp::Ne, Num::F32) => Instr::NeF32 { d, a, b },
+            (BinOp::Ne, Num::F64) => Instr::NeF64 { d, a, b },
+            (BinOp::Ne, n) => width_instr(
+                n.size(),
+                [
+                    Instr::Ne8 { d, a, b },
+                    Instr::Ne16 { d, a, b },
+                    Instr::Ne32 { d, a, b },
+                    Instr::Ne64 { d, a, b },
+                ],
+            ),
+            (BinOp::Lt, n) => match n {
+                Num::I8 => Instr::LtI8 { d, a, b },
+                Num::I16 => Instr::LtI16 { d, a, b },
+                Num::I32 => Instr::LtI32 { d, a, b },
+                Num::I64 => Instr::LtI64 { d, a, b },
+                Num::U8 | Num::B => Instr::LtU8 { d, a, b },
+                Num::U16 => Instr::LtU16 { d, a, b },
+                Num::U32 => Instr::LtU32 { d, a, b },
+                Num::U64 => Instr::LtU64 { d, a, b },
+                Num::F32 => Instr::LtF32 { d, a, b },
+                Num::F64 => Instr::LtF64 { d, a, b },
+            },
+            (_, n) => match n {
+                Num::I8 => Instr::LeI8 { d, a, b },
+                Num::I16 => Instr::LeI16 { d, a, b },
+                Num::I32 => Instr::LeI32 { d, a, b },
+                Num::I64 => Instr::LeI64 { d, a, b },
+                Num::U8 | Num::B => Instr::LeU8 { d, a, b },
+                Num::U16 => Instr::LeU16 { d, a, b },
+                Num::U32 => Instr::LeU32 { d, a, b },
+                Num::U64 => Instr::LeU64 { d, a, b },
+                Num::F32 => Instr::LeF32 { d, a, b },
+                Num::F64 => Instr::LeF64 { d, a, b },
+            },
+        }
+    }
+
+    /// An operation through `stc_values`.
+    fn generic(&mut self, op: StdOp, args: &[(Op, TypeId)], result: (Op, TypeId)) {
+        let arg = |c: &Self, (o, t): (Op, TypeId)| {
+            (o, c.scalar(t).unwrap_or(ElemType::Lint), c.cap_of(t))
+        };
+        let call = StdCall {
+            op,
+            args: args.iter().map(|&a| arg(self, a)).collect(),
+            result: arg(self, result),
+        };
+        let idx = self.calls.len() as u32;
+        self.calls.push(call);
+        self.emit(Instr::Std { call: idx });
+    }
+
+    fn cap_of(&self, t: TypeId) -> u32 {
+        match self.m.types.kind(t) {
+            TypeKind::String { len, .. } => *len,
+            _ => 0,
+        }
+    }
+
+    // ----- calls --------------------------------------------------------------------
+
+    /// Calls a function; returns the operand of its result.
+    fn call_fn(
+        &mut self,
+        func: PouId,
+        inputs: &[(VarId, Expr)],
+        inouts: &[(VarId, Place)],
+        outputs: &[stc_ir::Output],
+    ) -> Result<Option<Op>, CompileError> {
+        let info = self.frames[func.0 as usize]
+            .clone()
+            .ok_or_else(|| CompileError::Unsupported("a call before its callee".into()))?;
+        let callee = &self.m.pous[func.0 as usize];
+        let region = self.temp(info.size).offset();
+        let slot = |v: VarId| Op::frame(region + info.var_off.get(&v.0).copied().unwrap_or(0));
+        // Every input: given, or its initial value.
+        for (i, v) in callee.vars.iter().enumerate() {
+            if v.section != Section::Input {
+                continue;
+            }
+            let var = VarId(i as u32);
+            match inputs.iter().find(|(p, _)| *p == var) {
+                Some((_, e)) => {
+                    let d = slot(var);
+                    if self.is_scalar(v.ty) {
+                        self.expr_into(e, d)?;
+                    } else {
+                        let a = self.expr(e)?;
+                        self.store(
+                            PlaceLoc {
+                                loc: Loc::At(d),
+                                part: None,
+                            },
+                            a,
+                            e.ty,
+                            v.ty,
+                        )?;
+                    }
+                }
+                None => {
+                    let size = self.size_of(v.ty);
+                    let mut scratch = std::mem::take(&mut self.data);
+                    let base = scratch.len() as u32;
+                    scratch.resize((base + size) as usize, 0);
+                    self.data = scratch;
+                    self.write_init(v.ty, base, v.init.as_ref(), None);
+                    let bytes = self.data[base as usize..].to_vec();
+                    self.data.truncate(base as usize);
+                    let c = Op::abs(self.data.len() as u32 + self.const_bytes(&bytes, 8));
+                    let d = slot(var);
+                    self.mov(d, c, size);
+                }
+            }
+        }
+        for (v, p) in inouts {
+            let addr = self.address_of(p)?;
+            self.mov(slot(*v), addr, 4);
+        }
+        self.emit(Instr::CallFn {
+            pou: func.0,
+            frame: region,
+        });
+        for o in outputs {
+            let var = &callee.vars[o.var.0 as usize];
+            let src = slot(o.var);
+            self.copy_out(src, var.ty, o)?;
+        }
+        Ok(callee
+            .vars
+            .iter()
+            .position(|v| v.section == Section::Result)
+            .map(|i| slot(VarId(i as u32))))
+    }
+
+    /// Copies an output parameter into its `=>` target (converting, negating).
+    fn copy_out(
+        &mut self,
+        src: Op,
+        src_ty: TypeId,
+        o: &stc_ir::Output,
+    ) -> Result<(), CompileError> {
+        let mut v = src;
+        if o.negated {
+            let t = self.temp(1);
+            self.emit(Instr::NotB { d: t, a: src });
+            v = t;
+        }
+        let tt = o.target.ty;
+        let (f, t) = (self.scalar(src_ty), self.scalar(tt));
+        if f != t
+            && f.is_some()
+            && t.is_some()
+            && !matches!(self.m.types.kind(tt), TypeKind::String { .. })
+        {
+            let d = self.temp_of(tt);
+            let plain = |x: Option<ElemType>| {
+                x.is_some_and(|x| Num::of(x).is_some() && !stc_values::is_time_like(x))
+            };
+            if plain(f) && plain(t) {
+                self.emit(Instr::Cvt {
+                    d,
+                    a: v,
+                    from: Num::of(f.unwrap_or(ElemType::Lint))
+                        .unwrap_or(Num::I64)
+                        .code(),
+                    to: Num::of(t.unwrap_or(ElemType::Lint))
+                        .unwrap_or(Num::I64)
+                        .code(),
+                });
+            } else {
+                self.generic(StdOp::Convert, &[(v, src_ty)], (d, tt));
+            }
+            v = d;
+        }
+        let pl = self.place(&o.target)?;
+        self.store(pl, v, src_ty, tt)
+    }
+
+    /// An operand holding the address of a place.
+    fn address_of(&mut self, p: &Place) -> Result<Op, CompileError> {
+        let pl = self.place(p)?;
+        let d = self.temp(4);
+        match pl.loc {
+            Loc::At(a) => {
+                self.emit(Instr::Lea { d, a });
+            }
+            Loc::Ptr { ptr, off } => {
+                let c = self.const_u32(off);
+                self.emit(Instr::Add32 { d, a: ptr, b: c });
+            }
+        }
+        Ok(d)
+    }
+
+    fn call_fb(
+        &mut self,
+        instance: &Place,
+        fb: PouId,
+        inputs: &[(VarId, Expr)],
+        inouts: &[(VarId, Place)],
+        outputs: &[stc_ir::Output],
+    ) -> Result<(), CompileError> {
+        let info = self.frames[fb.0 as usize]
+            .clone()
+            .ok_or_else(|| CompileError::Unsupported("a call before its callee".into()))?;
+        let pl = self.place(instance)?;
+        let lay = self.l.pous[fb.0 as usize].clone();
+        let m = self.m;
+        let fbp = &m.pous[fb.0 as usize];
+        // Inputs, in order, into the instance.
+        for (v, e) in inputs {
+            let var = fbp.var(*v);
+            let off = lay.offsets[v.0 as usize];
+            let dst = PlaceLoc {
+                loc: offset_loc(pl.loc, off),
+                part: None,
+            };
+            match dst.loc {
+                Loc::At(d) if self.is_scalar(var.ty) => self.expr_into(e, d)?,
+                _ => {
+                    let a = self.expr(e)?;
+                    self.store(dst, a, e.ty, var.ty)?;
+                }
+            }
+        }
+        for (v, p) in inouts {
+            let addr = self.address_of(p)?;
+            let off = lay.offsets[v.0 as usize];
+            self.store_loc(offset_loc(pl.loc, off), addr, 4)?;
+        }
+        let region = self.temp(info.size).offset();
+        match pl.loc {
+            Loc::At(inst) => {
+                self.emit(Instr::CallFb {
+                    pou: fb.0,
+                    inst,
+                    frame: region,
+                });
+            }
+            Loc::Ptr { ptr, off } => {
+                let p = if off == 0 {
+                    ptr
+                } else {
+                    let d = self.temp(4);
+                    let c = self.const_u32(off);
+                    self.emit(Instr::Add32 { d, a: ptr, b: c });
+                    d
+                };
+                self.emit(Instr::CallFbInd {
+                    pou: fb.0,
+                    inst: p,
+                    frame: region,
+                });
+            }
+        }
+        for o in outputs {
+            let var = fbp.var(o.var);
+            let off = lay.offsets[o.var.0 as usize];
+            let src = match offset_loc(pl.loc, off) {
+                Loc::At(a) => a,
+                l => {
+                    let size = self.size_of(var.ty);
+                    self.load_loc(l, size)?
+                }
+            };
+            self.copy_out(src, var.ty, o)?;
+        }
+        Ok(())
+    }
+}
+
+fn offset_loc(l: Loc, off: u32) -> Loc {
+    match l {
+        Loc::At(a) => Loc::At(a.plus(off)),
+        Loc::Ptr { ptr, off: o } => Loc::Ptr { ptr, off: o + off },
+    }
+}
+
+fn width_instr(size: u32, options: [Instr; 4]) -> Instr {
+    let [a, b, c, d] = options;
+    match size {
+        1 => a,
+        2 => b,
+        4 => c,
+        _ => d,
+    }
+}
+
+/// The type a direct address has when used without a declared variable.
+fn addr_type(m: &Module, a: &DirectAddress) -> TypeId {
+    let e = match a.size {
+        AddrSize::Bit => ElemType::Bool,
+        AddrSize::Byte => ElemType::Byte,
+        AddrSize::Word => ElemType::Word,
+        AddrSize::Dword => ElemType::Dword,
+        AddrSize::Lword => ElemType::Lword,
+    };
+    m.types_elem(e)
+}
+
+fn visit_places(stmts: &[Stmt], f: &mut dyn FnMut(&Place)) {
+    fn expr(e: &Expr, f: &mut dyn FnMut(&Place)) {
+        match &e.kind {
+            ExprKind::Load(p) => place(p, f),
+            ExprKind::Unary(_, x) | ExprKind::Convert(x) => expr(x, f),
+            ExprKind::Check { value, .. } => expr(value, f),
+            ExprKind::Binary(_, a, b) => {
+                expr(a, f);
+                expr(b, f);
+            }
+            ExprKind::CallFn {
+                inputs,
+                inouts,
+                outputs,
+                ..
+            } => {
+                for (_, x) in inputs {
+                    expr(x, f);
+                }
+                for (_, p) in inouts {
+                    place(p, f);
+                }
+                for o in outputs {
+                    place(&o.target, f);
+                }
+            }
+            ExprKind::Intrinsic { args, .. } => {
+                for a in args {
+                    expr(a, f);
+                }
+            }
+            _ => {}
+        }
+    }
+    fn place(p: &Place, f: &mut dyn FnMut(&Place)) {
+        f(p);
+        for pr in &p.proj {
+            if let Proj::Index(idx) = pr {
+                for (e, _, _) in idx {
+                    expr(e, f);
+                }
+            }
+        }
+    }
+    for s in stmts {
+        match &s.kind {
+            StmtKind::Assign { place: p, value } => {
+                place(p, f);
+                expr(value, f);
+            }
+            StmtKind::CallFb {
+                instance,
+                inputs,
+                inouts,
+                outputs,
+                ..
+            } => {
+                place(instance, f);
+                for (_, x) in inputs {
+                    expr(x, f);
+                }
+                for (_, p) in inouts {
+                    place(p, f);
+                }
+                for o in outputs {
+                    place(&o.target, f);
+                }
+            }
+            StmtKind::Eval(e) => expr(e, f),
+            StmtKind::If {
+                cond,
+                then_body,
+                else_body,
+            } => {
+                expr(cond, f);
+                visit_places(then_body, f);
+                visit_places(else_body, f);
+            }
+            StmtKind::Switch {
+                selector,
+                arms,
+                default,
+            } => {
+                expr(selector, f);
+                for a in arms {
+                    visit_places(&a.body, f);
+                }
+                visit_places(default, f);
+            }
+            StmtKind::Loop { body, latch } => {
+                visit_places(body, f);
+                visit_places(latch, f);
+            }
+            _ => {}
+        }
+    }
+}
+
+fn visit_calls(stmts: &[Stmt], f: &mut dyn FnMut(PouId)) {
+    fn expr(e: &Expr, f: &mut dyn FnMut(PouId)) {
+        match &e.kind {
+            ExprKind::CallFn { func, inputs, .. } => {
+                f(*func);
+                for (_, x) in inputs {
+                    expr(x, f);
+                }
+            }
+            ExprKind::Unary(_, x) | ExprKind::Convert(x) => expr(x, f),
+            ExprKind::Check { value, .. } => expr(value, f),
+            ExprKind::Binary(_, a, b) => {
+                expr(a, f);
+                expr(b, f);
+            }
+            ExprKind::Intrinsic { args, .. } => {
+                for a in args {
+                    expr(a, f);
+                }
+            }
+            ExprKind::Load(p) => {
+                for pr in &p.proj {
+                    if let Proj::Index(idx) = pr {
+                        for (e, _, _) in idx {
+                            expr(e, f);
+                        }
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    for s in stmts {
+        match &s.kind {
+            StmtKind::Assign { value, place } => {
+                expr(value, f);
+                expr(
+                    &Expr {
+                        kind: ExprKind::Load(place.clone()),
+                        ty: place.ty,
+                    },
+                    f,
+                );
+            }
+            StmtKind::CallFb { fb, inputs, .. } => {
+                f(*fb);
+                for (_, x) in inputs {
+                    expr(x, f);
+                }
+            }
+            StmtKind::Eval(e) => expr(e, f),
+            StmtKind::If {
+                cond,
+                then_body,
+                else_body,
+            } => {
+                expr(cond, f);
+                visit_calls(then_body, f);
+                visit_calls(else_body, f);
+            }
+            StmtKind::Switch {
+                selector,
+                arms,
+                default,
+            } => {
+                expr(selector, f);
+                for a in arms {
+                    visit_calls(&a.body, f);
+                }
+                visit_calls(default, f);
+            }
+            StmtKind::Loop { body, latch } => {
+                visit_calls(body, f);
+                visit_calls(latch, f);
+            }
+            _ => {}
+        }
+    }
+}

@@ -1,0 +1,251 @@
+//! A loaded program: code, constants, the initial data image, and every
+//! table the runtime needs (types, variables, configurations, the process
+//! image, debug lines). This is what a `.stbc` file holds.
+//!
+//! Memory is one byte array, in this order: the data area (globals, program
+//! instances with their nested function block instances, the process image
+//! slots), the constant pool, then the stack of call frames. Addresses are
+//! `u32` byte offsets into it.
+
+use stc_syntax::literal::DirectAddress;
+use stc_syntax::token::ElemType;
+
+use crate::instr::Instr;
+
+/// Index of a type in [`Image::types`].
+pub type TypeRef = u32;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Image {
+    pub code: Vec<Instr>,
+    /// The constant pool, placed at [`Image::const_base`].
+    pub consts: Vec<u8>,
+    /// Size of the data area; its initial contents are `init`.
+    pub data_size: u32,
+    pub init: Vec<u8>,
+    /// Size of the stack area (the deepest chain of frames).
+    pub stack_size: u32,
+    pub types: Vec<TypeDesc>,
+    pub pous: Vec<PouCode>,
+    /// Global variables, by plain name (all configurations and top-level lists).
+    pub globals: Vec<GlobalDesc>,
+    pub configs: Vec<ConfigDesc>,
+    /// A standalone instance of every PROGRAM type (for `--program`).
+    pub programs: Vec<ProgramInst>,
+    /// Process image slots: one per direct address used.
+    pub io: Vec<IoSlot>,
+    /// Calls of standard functions and generic operations (by descriptor).
+    pub calls: Vec<StdCall>,
+    /// Source positions: for each instruction index where a statement starts.
+    pub lines: Vec<LineEntry>,
+    pub files: Vec<String>,
+}
+
+impl Image {
+    /// Where the constant pool starts.
+    pub fn const_base(&self) -> u32 {
+        self.data_size
+    }
+
+    /// Where the stack starts.
+    pub fn stack_base(&self) -> u32 {
+        self.data_size + self.consts.len() as u32
+    }
+
+    pub fn memory_size(&self) -> u64 {
+        self.stack_base() as u64 + self.stack_size as u64
+    }
+
+    /// The source position of an instruction: (POU, file, line, column).
+    pub fn position(&self, pc: u32) -> Option<(&str, &str, u32, u32)> {
+        let i = match self.lines.binary_search_by_key(&pc, |l| l.pc) {
+            Ok(i) => i,
+            Err(0) => return None,
+            Err(i) => i - 1,
+        };
+        let l = &self.lines[i];
+        let pou = self.pous.get(l.pou as usize)?;
+        let file = self
+            .files
+            .get(l.file as usize)
+            .map(|s| s.as_str())
+            .unwrap_or("?");
+        Some((pou.name.as_str(), file, l.line, l.col))
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum TypeDesc {
+    Scalar(ElemType),
+    String {
+        wide: bool,
+        cap: u32,
+    },
+    Enum {
+        name: String,
+        base: ElemType,
+        values: Vec<(String, i128)>,
+    },
+    /// `stride` is the size of one element; dims are (low, high) bounds.
+    Array {
+        elem: TypeRef,
+        dims: Vec<(i64, i64)>,
+        stride: u32,
+    },
+    Struct {
+        name: Option<String>,
+        fields: Vec<FieldDesc>,
+    },
+    /// An instance of a function block or program: the POU's variables.
+    Instance {
+        pou: u32,
+    },
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct FieldDesc {
+    pub name: String,
+    pub ty: TypeRef,
+    pub offset: u32,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum VarKind {
+    Input,
+    Output,
+    InOut,
+    Var,
+    Temp,
+    External,
+    Global,
+    Result,
+    Hidden,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct VarDesc {
+    pub name: String,
+    pub ty: TypeRef,
+    pub kind: VarKind,
+    /// Offset in the instance (function blocks, programs) or the frame.
+    pub offset: u32,
+    /// Whether the variable lives in the frame (functions, VAR_TEMP).
+    pub in_frame: bool,
+    /// A reference (VAR_IN_OUT, VAR_EXTERNAL): the slot holds an address.
+    pub is_ref: bool,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct PouCode {
+    pub name: String,
+    pub kind: PouKind,
+    /// First instruction of the body.
+    pub entry: u32,
+    /// Size of the instance (function blocks and programs).
+    pub instance_size: u32,
+    /// Size of one call frame, including temporaries and argument areas.
+    pub frame_size: u32,
+    /// The frame's initial bytes from `frame_init_at` on: a range of the
+    /// constant pool copied at each call (VAR_TEMP, a function's locals).
+    pub frame_init_at: u32,
+    pub frame_template: (u32, u32),
+    pub vars: Vec<VarDesc>,
+    /// The type describing an instance of this POU.
+    pub instance_type: TypeRef,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PouKind {
+    Function,
+    FunctionBlock,
+    Program,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct GlobalDesc {
+    pub name: String,
+    pub ty: TypeRef,
+    pub offset: u32,
+    /// The configuration the global belongs to (`None`: a top-level list).
+    pub config: Option<u32>,
+    pub location: Option<DirectAddress>,
+    pub constant: bool,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct ConfigDesc {
+    pub name: String,
+    pub resources: Vec<ResourceDesc>,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct ResourceDesc {
+    pub name: Option<String>,
+    pub tasks: Vec<TaskDesc>,
+    pub programs: Vec<ProgramInst>,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct TaskDesc {
+    pub name: String,
+    pub interval_ns: Option<i64>,
+    pub priority: u32,
+    /// The BOOL that triggers an event task.
+    pub single: Option<Source>,
+}
+
+/// A program instance: where its data is and what is connected to it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ProgramInst {
+    pub name: String,
+    pub pou: u32,
+    /// Address of the instance in the data area.
+    pub offset: u32,
+    /// Index of its task in its resource.
+    pub task: Option<u32>,
+    /// Inputs copied in before each run: (offset in the instance, type, source).
+    pub inputs: Vec<(u32, TypeRef, Source)>,
+    /// Outputs copied out after each run: (offset in the instance, type, sink).
+    pub outputs: Vec<(u32, TypeRef, Source)>,
+}
+
+/// A value in the data area (or a constant in the pool) with its type.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Source {
+    /// An absolute address (a global, a process image slot, a constant).
+    Addr { offset: u32, ty: TypeRef },
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct IoSlot {
+    pub address: DirectAddress,
+    pub offset: u32,
+    pub ty: TypeRef,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LineEntry {
+    pub pc: u32,
+    pub pou: u32,
+    pub file: u32,
+    pub line: u32,
+    pub col: u32,
+}
+
+/// A call of a standard function (or a generic operation) evaluated through
+/// `stc_values`: the operation, operand addresses and their types.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StdCall {
+    pub op: StdOp,
+    pub args: Vec<(crate::instr::Op, ElemType, u32)>,
+    pub result: (crate::instr::Op, ElemType, u32),
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum StdOp {
+    Call(stc_values::Intrinsic),
+    Binary(stc_values::BinOp),
+    Unary(stc_values::UnOp),
+    Convert,
+    Trunc,
+}

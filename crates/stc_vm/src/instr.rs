@@ -1,0 +1,364 @@
+//! The instruction set.
+//!
+//! Memory-to-memory, as CPDev's: every operand is an address, so `x := x + 1`
+//! on a variable of an instance is one instruction, not a load, an add and a
+//! store. Opcodes are typed (`add.i32`, `lt.f64`), so the interpreter never
+//! inspects a value's type, and operands are pre-decoded: an operand is a
+//! `u32` whose top two bits say which base it is relative to (the current
+//! frame, the current instance, or absolute: globals and constants), so the
+//! interpreter computes an address with one table lookup and one add.
+//!
+//! Every instruction is defined once, in the table at the bottom: the enum,
+//! the binary encoding, the assembler mnemonics and the field kinds the
+//! verifier checks all come from it.
+
+use std::fmt;
+
+/// An operand: an address relative to a base.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct Op(pub u32);
+
+pub const MODE_FRAME: u32 = 0;
+pub const MODE_THIS: u32 = 1;
+pub const MODE_ABS: u32 = 2;
+pub const OFFSET_MASK: u32 = (1 << 30) - 1;
+
+impl Op {
+    pub fn frame(off: u32) -> Op {
+        Op(off & OFFSET_MASK)
+    }
+    pub fn this(off: u32) -> Op {
+        Op((MODE_THIS << 30) | (off & OFFSET_MASK))
+    }
+    pub fn abs(addr: u32) -> Op {
+        Op((MODE_ABS << 30) | (addr & OFFSET_MASK))
+    }
+    pub fn mode(self) -> u32 {
+        self.0 >> 30
+    }
+    pub fn offset(self) -> u32 {
+        self.0 & OFFSET_MASK
+    }
+    /// The same operand moved by `delta` bytes.
+    pub fn plus(self, delta: u32) -> Op {
+        Op((self.0 & !OFFSET_MASK) | ((self.offset() + delta) & OFFSET_MASK))
+    }
+}
+
+impl fmt::Debug for Op {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.mode() {
+            MODE_FRAME => write!(f, "f{}", self.offset()),
+            MODE_THIS => write!(f, "t{}", self.offset()),
+            MODE_ABS => write!(f, "@{}", self.offset()),
+            _ => write!(f, "?{}", self.offset()),
+        }
+    }
+}
+
+/// A jump target: an instruction index.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, Default)]
+pub struct Tgt(pub u32);
+
+/// What a field of an instruction is, for the text form and the verifier.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum FieldKind {
+    /// An operand read or written with the given number of bytes (0: a size
+    /// given by another field).
+    Op(u32),
+    Target,
+    Imm,
+}
+
+pub trait Field: Copy {
+    fn to_u32(self) -> u32;
+    fn from_u32(v: u32) -> Self;
+}
+
+impl Field for Op {
+    fn to_u32(self) -> u32 {
+        self.0
+    }
+    fn from_u32(v: u32) -> Op {
+        Op(v)
+    }
+}
+impl Field for Tgt {
+    fn to_u32(self) -> u32 {
+        self.0
+    }
+    fn from_u32(v: u32) -> Tgt {
+        Tgt(v)
+    }
+}
+impl Field for u32 {
+    fn to_u32(self) -> u32 {
+        self
+    }
+    fn from_u32(v: u32) -> u32 {
+        v
+    }
+}
+
+macro_rules! field_kind {
+    (Op, $size:expr) => {
+        FieldKind::Op($size)
+    };
+    (Tgt, $size:expr) => {
+        FieldKind::Target
+    };
+    (u32, $size:expr) => {
+        FieldKind::Imm
+    };
+}
+
+macro_rules! instructions {
+    ($( $(#[$meta:meta])* $name:ident $mn:literal [$size:expr] { $($f:ident : $t:ident),* } )*) => {
+        /// One instruction. Fields are operands (`Op`), jump targets (`Tgt`)
+        /// or immediates (`u32`).
+        #[derive(Clone, Copy, PartialEq, Eq, Debug)]
+        pub enum Instr { $( $(#[$meta])* $name { $($f: $t),* }, )* }
+
+        /// Every opcode's mnemonic, in opcode order.
+        pub const MNEMONICS: &[&str] = &[$($mn,)*];
+
+        impl Instr {
+            pub fn opcode(&self) -> u8 {
+                #[allow(unused_assignments)]
+                let mut n: u8 = 0;
+                $(
+                    if let Instr::$name { .. } = self { return n; }
+                    n += 1;
+                )*
+                n
+            }
+
+            pub fn mnemonic(&self) -> &'static str {
+                MNEMONICS.get(self.opcode() as usize).copied().unwrap_or("?")
+            }
+
+            /// The fields, as stored in the binary form.
+            pub fn fields(&self) -> Vec<u32> {
+                match *self { $( Instr::$name { $($f),* } => vec![$($f.to_u32()),*], )* }
+            }
+
+            /// The kind of each field of an opcode.
+            pub fn field_kinds(opcode: u8) -> Option<&'static [FieldKind]> {
+                let table: &[&[FieldKind]] = &[$( &[$(field_kind!($t, $size)),*], )*];
+                table.get(opcode as usize).copied()
+            }
+
+            /// Builds an instruction from its opcode and fields (the inverse
+            /// of `opcode` and `fields`); `None` for an unknown opcode or the
+            /// wrong number of fields.
+            pub fn from_parts(opcode: u8, fields: &[u32]) -> Option<Instr> {
+                #[allow(unused_assignments, unused_mut, unused_variables)]
+                let mut n: u8 = 0;
+                $(
+                    if opcode == n {
+                        let mut it = fields.iter().copied();
+                        let i = Instr::$name { $($f: <$t as Field>::from_u32(it.next()?)),* };
+                        return if it.next().is_none() { Some(i) } else { None };
+                    }
+                    n += 1;
+                )*
+                None
+            }
+        }
+    };
+}
+
+// The table. `[N]` is the byte size of the values the operand fields access
+// (0: given by a field, or several sizes).
+instructions! {
+    Nop "nop" [0] {}
+    // Moves by size, and block copies.
+    Mov1 "mov.1" [1] { d: Op, a: Op }
+    Mov2 "mov.2" [2] { d: Op, a: Op }
+    Mov4 "mov.4" [4] { d: Op, a: Op }
+    Mov8 "mov.8" [8] { d: Op, a: Op }
+    Copy "copy" [0] { d: Op, a: Op, len: u32 }
+    /// String assignment: `d` has capacity `cap` characters of `unit` bytes.
+    StrCopy "strcopy" [0] { d: Op, a: Op, cap: u32, unit: u32 }
+    // Integer arithmetic, wrapping, by width.
+    Add8 "add.8" [1] { d: Op, a: Op, b: Op }
+    Add16 "add.16" [2] { d: Op, a: Op, b: Op }
+    Add32 "add.32" [4] { d: Op, a: Op, b: Op }
+    Add64 "add.64" [8] { d: Op, a: Op, b: Op }
+    Sub8 "sub.8" [1] { d: Op, a: Op, b: Op }
+    Sub16 "sub.16" [2] { d: Op, a: Op, b: Op }
+    Sub32 "sub.32" [4] { d: Op, a: Op, b: Op }
+    Sub64 "sub.64" [8] { d: Op, a: Op, b: Op }
+    Mul8 "mul.8" [1] { d: Op, a: Op, b: Op }
+    Mul16 "mul.16" [2] { d: Op, a: Op, b: Op }
+    Mul32 "mul.32" [4] { d: Op, a: Op, b: Op }
+    Mul64 "mul.64" [8] { d: Op, a: Op, b: Op }
+    Neg8 "neg.8" [1] { d: Op, a: Op }
+    Neg16 "neg.16" [2] { d: Op, a: Op }
+    Neg32 "neg.32" [4] { d: Op, a: Op }
+    Neg64 "neg.64" [8] { d: Op, a: Op }
+    // Division and remainder, by signedness and width (zero divisor: fault).
+    DivI8 "div.i8" [1] { d: Op, a: Op, b: Op }
+    DivI16 "div.i16" [2] { d: Op, a: Op, b: Op }
+    DivI32 "div.i32" [4] { d: Op, a: Op, b: Op }
+    DivI64 "div.i64" [8] { d: Op, a: Op, b: Op }
+    DivU8 "div.u8" [1] { d: Op, a: Op, b: Op }
+    DivU16 "div.u16" [2] { d: Op, a: Op, b: Op }
+    DivU32 "div.u32" [4] { d: Op, a: Op, b: Op }
+    DivU64 "div.u64" [8] { d: Op, a: Op, b: Op }
+    ModI8 "mod.i8" [1] { d: Op, a: Op, b: Op }
+    ModI16 "mod.i16" [2] { d: Op, a: Op, b: Op }
+    ModI32 "mod.i32" [4] { d: Op, a: Op, b: Op }
+    ModI64 "mod.i64" [8] { d: Op, a: Op, b: Op }
+    ModU8 "mod.u8" [1] { d: Op, a: Op, b: Op }
+    ModU16 "mod.u16" [2] { d: Op, a: Op, b: Op }
+    ModU32 "mod.u32" [4] { d: Op, a: Op, b: Op }
+    ModU64 "mod.u64" [8] { d: Op, a: Op, b: Op }
+    // Floating point (REAL results rounded to binary32).
+    AddF32 "add.f32" [4] { d: Op, a: Op, b: Op }
+    AddF64 "add.f64" [8] { d: Op, a: Op, b: Op }
+    SubF32 "sub.f32" [4] { d: Op, a: Op, b: Op }
+    SubF64 "sub.f64" [8] { d: Op, a: Op, b: Op }
+    MulF32 "mul.f32" [4] { d: Op, a: Op, b: Op }
+    MulF64 "mul.f64" [8] { d: Op, a: Op, b: Op }
+    DivF32 "div.f32" [4] { d: Op, a: Op, b: Op }
+    DivF64 "div.f64" [8] { d: Op, a: Op, b: Op }
+    NegF32 "neg.f32" [4] { d: Op, a: Op }
+    NegF64 "neg.f64" [8] { d: Op, a: Op }
+    // Equality by width (floats by value); the result is a BOOL byte.
+    Eq8 "eq.8" [1] { d: Op, a: Op, b: Op }
+    Eq16 "eq.16" [2] { d: Op, a: Op, b: Op }
+    Eq32 "eq.32" [4] { d: Op, a: Op, b: Op }
+    Eq64 "eq.64" [8] { d: Op, a: Op, b: Op }
+    EqF32 "eq.f32" [4] { d: Op, a: Op, b: Op }
+    EqF64 "eq.f64" [8] { d: Op, a: Op, b: Op }
+    Ne8 "ne.8" [1] { d: Op, a: Op, b: Op }
+    Ne16 "ne.16" [2] { d: Op, a: Op, b: Op }
+    Ne32 "ne.32" [4] { d: Op, a: Op, b: Op }
+    Ne64 "ne.64" [8] { d: Op, a: Op, b: Op }
+    NeF32 "ne.f32" [4] { d: Op, a: Op, b: Op }
+    NeF64 "ne.f64" [8] { d: Op, a: Op, b: Op }
+    // Ordering: `lt` and `le` only (the compiler swaps operands for > and >=).
+    LtI8 "lt.i8" [1] { d: Op, a: Op, b: Op }
+    LtI16 "lt.i16" [2] { d: Op, a: Op, b: Op }
+    LtI32 "lt.i32" [4] { d: Op, a: Op, b: Op }
+    LtI64 "lt.i64" [8] { d: Op, a: Op, b: Op }
+    LtU8 "lt.u8" [1] { d: Op, a: Op, b: Op }
+    LtU16 "lt.u16" [2] { d: Op, a: Op, b: Op }
+    LtU32 "lt.u32" [4] { d: Op, a: Op, b: Op }
+    LtU64 "lt.u64" [8] { d: Op, a: Op, b: Op }
+    LtF32 "lt.f32" [4] { d: Op, a: Op, b: Op }
+    LtF64 "lt.f64" [8] { d: Op, a: Op, b: Op }
+    LeI8 "le.i8" [1] { d: Op, a: Op, b: Op }
+    LeI16 "le.i16" [2] { d: Op, a: Op, b: Op }
+    LeI32 "le.i32" [4] { d: Op, a: Op, b: Op }
+    LeI64 "le.i64" [8] { d: Op, a: Op, b: Op }
+    LeU8 "le.u8" [1] { d: Op, a: Op, b: Op }
+    LeU16 "le.u16" [2] { d: Op, a: Op, b: Op }
+    LeU32 "le.u32" [4] { d: Op, a: Op, b: Op }
+    LeU64 "le.u64" [8] { d: Op, a: Op, b: Op }
+    LeF32 "le.f32" [4] { d: Op, a: Op, b: Op }
+    LeF64 "le.f64" [8] { d: Op, a: Op, b: Op }
+    // Bit strings and BOOL (BOOL is a byte holding 0 or 1).
+    And8 "and.8" [1] { d: Op, a: Op, b: Op }
+    And16 "and.16" [2] { d: Op, a: Op, b: Op }
+    And32 "and.32" [4] { d: Op, a: Op, b: Op }
+    And64 "and.64" [8] { d: Op, a: Op, b: Op }
+    Or8 "or.8" [1] { d: Op, a: Op, b: Op }
+    Or16 "or.16" [2] { d: Op, a: Op, b: Op }
+    Or32 "or.32" [4] { d: Op, a: Op, b: Op }
+    Or64 "or.64" [8] { d: Op, a: Op, b: Op }
+    Xor8 "xor.8" [1] { d: Op, a: Op, b: Op }
+    Xor16 "xor.16" [2] { d: Op, a: Op, b: Op }
+    Xor32 "xor.32" [4] { d: Op, a: Op, b: Op }
+    Xor64 "xor.64" [8] { d: Op, a: Op, b: Op }
+    Not8 "not.8" [1] { d: Op, a: Op }
+    Not16 "not.16" [2] { d: Op, a: Op }
+    Not32 "not.32" [4] { d: Op, a: Op }
+    Not64 "not.64" [8] { d: Op, a: Op }
+    NotB "not.b" [1] { d: Op, a: Op }
+    /// Numeric conversion: `from` and `to` are scalar codes (see `vm::Num`).
+    Cvt "cvt" [0] { d: Op, a: Op, from: u32, to: u32 }
+    /// Fault unless `lo <= a <= hi` for the scalar code `num`; `lo`, `hi`
+    /// are constant-pool operands of that scalar's width.
+    Check "check" [0] { a: Op, lo: Op, hi: Op, num: u32 }
+    /// A bit (or byte, word...) of a bit string: `d := a.part`.
+    GetPart "getpart" [0] { d: Op, a: Op, width: u32, part: u32, index: u32 }
+    SetPart "setpart" [0] { d: Op, a: Op, width: u32, part: u32, index: u32 }
+    // References and indexing. Addresses are 4-byte values.
+    Lea "lea" [4] { d: Op, a: Op }
+    /// `d := a + (idx - lo) * stride`, after checking `lo <= idx < lo + count`;
+    /// `idx` is an 8-byte signed integer.
+    Index "index" [0] { d: Op, a: Op, idx: Op, lo: Op, count: u32, stride: u32 }
+    /// `d := mem[*p + off .. + len]`, `mem[*p + off .. + len] := a`.
+    Load "load" [0] { d: Op, p: Op, off: u32, len: u32 }
+    Store "store" [0] { p: Op, a: Op, off: u32, len: u32 }
+    // Control flow.
+    Jmp "jmp" [0] { t: Tgt }
+    Jz "jz" [1] { c: Op, t: Tgt }
+    Jnz "jnz" [1] { c: Op, t: Tgt }
+    /// Jump to `t` if `a < b` (signed 32-bit): the head of most loops.
+    JltI32 "jlt.i32" [4] { a: Op, b: Op, t: Tgt }
+    /// Calls: the callee's frame starts at `frame` bytes into the caller's.
+    CallFn "callfn" [0] { pou: u32, frame: u32 }
+    /// `inst` is the instance (its address is the operand's address).
+    CallFb "callfb" [0] { pou: u32, inst: Op, frame: u32 }
+    /// `inst` holds the address of the instance.
+    CallFbInd "callfb.ind" [4] { pou: u32, inst: Op, frame: u32 }
+    Ret "ret" [0] {}
+    /// A standard function or generic operation through its descriptor.
+    Std "std" [0] { call: u32 }
+    /// `d := ` the task clock (TIME, 8 bytes).
+    CurTime "curtime" [8] { d: Op }
+    /// A run-time fault (the kind is a `FaultKind` code).
+    Fault "fault" [0] { kind: u32 }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn instructions_rebuild_from_their_parts() {
+        let samples = [
+            Instr::Add32 {
+                d: Op::frame(8),
+                a: Op::this(4),
+                b: Op::abs(100),
+            },
+            Instr::Jz {
+                c: Op::frame(1),
+                t: Tgt(7),
+            },
+            Instr::CallFb {
+                pou: 3,
+                inst: Op::this(16),
+                frame: 24,
+            },
+            Instr::Ret {},
+            Instr::Index {
+                d: Op::frame(0),
+                a: Op::frame(4),
+                idx: Op::frame(8),
+                lo: Op::abs(9),
+                count: 10,
+                stride: 4,
+            },
+        ];
+        for i in samples {
+            let back = Instr::from_parts(i.opcode(), &i.fields());
+            assert_eq!(back, Some(i));
+            assert_eq!(
+                Instr::field_kinds(i.opcode()).map(|k| k.len()),
+                Some(i.fields().len())
+            );
+        }
+        assert_eq!(
+            MNEMONICS.len(),
+            MNEMONICS
+                .iter()
+                .collect::<std::collections::HashSet<_>>()
+                .len()
+        );
+    }
+}

@@ -1,0 +1,230 @@
+//! A running program: its memory and the interpreter state around it.
+//!
+//! The runtime (scheduling, process image, reports) drives a [`Machine`]:
+//! it writes inputs with [`Machine::write_value`], runs program instances
+//! with [`Machine::run_program`], and reads variables back. Nothing a
+//! program does can touch memory outside this machine's byte array.
+
+use std::sync::Arc;
+
+use stc_ir::FaultKind;
+use stc_syntax::token::ElemType;
+use stc_values::Value;
+
+use crate::image::{Image, ProgramInst, TypeDesc, TypeRef};
+
+/// A run-time fault, located in the source.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct VmFault {
+    pub kind: FaultKind,
+    pub pou: String,
+    pub file: String,
+    pub line: u32,
+    pub col: u32,
+}
+
+impl std::fmt::Display for VmFault {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "fault: {} in {} at {}:{}:{}",
+            self.kind.text(),
+            self.pou,
+            self.file,
+            self.line,
+            self.col
+        )
+    }
+}
+
+pub struct Machine {
+    pub(crate) image: Arc<Image>,
+    pub(crate) mem: Vec<u8>,
+}
+
+impl Machine {
+    /// A machine with the image loaded: data initialised, constants in place.
+    pub fn new(image: Arc<Image>) -> Machine {
+        let size = image.memory_size().min(u32::MAX as u64) as usize;
+        let mut mem = vec![0u8; size];
+        let n = image.init.len().min(image.data_size as usize);
+        mem[..n].copy_from_slice(&image.init[..n]);
+        let cb = image.const_base() as usize;
+        let ce = (cb + image.consts.len()).min(size);
+        mem[cb..ce].copy_from_slice(&image.consts[..ce - cb]);
+        Machine { image, mem }
+    }
+
+    pub fn image(&self) -> &Image {
+        &self.image
+    }
+
+    /// Runs the body of a program instance once, at task time `now_ns`,
+    /// with at most `max_steps` instructions.
+    pub fn run_program(
+        &mut self,
+        inst: &ProgramInst,
+        now_ns: i64,
+        max_steps: u64,
+    ) -> Result<(), VmFault> {
+        let pou = self
+            .image
+            .pous
+            .get(inst.pou as usize)
+            .ok_or_else(|| self.fault_at(FaultKind::Watchdog, 0))?;
+        let entry = pou.entry;
+        self.execute(entry, inst.offset, inst.pou, now_ns, max_steps)
+    }
+
+    pub fn read_bytes(&self, off: u32, len: u32) -> Option<&[u8]> {
+        self.mem.get(off as usize..off as usize + len as usize)
+    }
+
+    pub fn write_bytes(&mut self, off: u32, bytes: &[u8]) -> bool {
+        match self.mem.get_mut(off as usize..off as usize + bytes.len()) {
+            Some(dst) => {
+                dst.copy_from_slice(bytes);
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// The address stored in a reference slot.
+    pub fn deref(&self, off: u32) -> Option<u32> {
+        self.read_bytes(off, 4)
+            .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+    }
+
+    /// A scalar or string value (enumerations read as their integer).
+    pub fn read_value(&self, off: u32, ty: TypeRef) -> Option<Value> {
+        match self.image.types.get(ty as usize)? {
+            TypeDesc::Scalar(e) => read_scalar(&self.mem, off, *e),
+            TypeDesc::Enum { base, .. } => read_scalar(&self.mem, off, *base),
+            TypeDesc::String { wide, cap } => read_string(&self.mem, off, *wide, *cap),
+            _ => None,
+        }
+    }
+
+    /// Writes a scalar or string value (strings truncated to capacity).
+    pub fn write_value(&mut self, off: u32, ty: TypeRef, v: &Value) -> bool {
+        match self.image.types.get(ty as usize).cloned() {
+            Some(TypeDesc::Scalar(e)) => write_scalar(&mut self.mem, off, e, v),
+            Some(TypeDesc::Enum { base, .. }) => write_scalar(&mut self.mem, off, base, v),
+            Some(TypeDesc::String { wide, cap }) => write_string(&mut self.mem, off, wide, cap, v),
+            _ => false,
+        }
+    }
+
+    pub(crate) fn fault_at(&self, kind: FaultKind, pc: u32) -> VmFault {
+        match self.image.position(pc) {
+            Some((pou, file, line, col)) => VmFault {
+                kind,
+                pou: pou.to_string(),
+                file: file.to_string(),
+                line,
+                col,
+            },
+            None => VmFault {
+                kind,
+                pou: "?".into(),
+                file: "?".into(),
+                line: 0,
+                col: 0,
+            },
+        }
+    }
+}
+
+/// Reads a scalar of an elementary type at `off`.
+pub fn read_scalar(mem: &[u8], off: u32, e: ElemType) -> Option<Value> {
+    use ElemType as E;
+    let o = off as usize;
+    let b = |n: usize| mem.get(o..o + n);
+    Some(match e {
+        E::Bool => Value::Bool(*mem.get(o)? != 0),
+        E::Sint => Value::Int(i8::from_le_bytes(b(1)?.try_into().ok()?) as i128),
+        E::Usint | E::Byte | E::Char => Value::Int(*mem.get(o)? as i128),
+        E::Int => Value::Int(i16::from_le_bytes(b(2)?.try_into().ok()?) as i128),
+        E::Uint | E::Word | E::Wchar => {
+            Value::Int(u16::from_le_bytes(b(2)?.try_into().ok()?) as i128)
+        }
+        E::Dint => Value::Int(i32::from_le_bytes(b(4)?.try_into().ok()?) as i128),
+        E::Udint | E::Dword => Value::Int(u32::from_le_bytes(b(4)?.try_into().ok()?) as i128),
+        E::Ulint | E::Lword => Value::Int(u64::from_le_bytes(b(8)?.try_into().ok()?) as i128),
+        E::Lint | E::Time | E::Ltime | E::Date | E::Ldate | E::Tod | E::Ltod | E::Dt | E::Ldt => {
+            Value::Int(i64::from_le_bytes(b(8)?.try_into().ok()?) as i128)
+        }
+        E::Real => Value::Real(f32::from_le_bytes(b(4)?.try_into().ok()?) as f64),
+        E::Lreal => Value::Real(f64::from_le_bytes(b(8)?.try_into().ok()?)),
+        E::String | E::Wstring => return None,
+    })
+}
+
+/// Writes a scalar of an elementary type at `off` (integers keep their low
+/// bits; the caller has converted the value).
+pub fn write_scalar(mem: &mut [u8], off: u32, e: ElemType, v: &Value) -> bool {
+    use ElemType as E;
+    let o = off as usize;
+    let size = stc_ir::layout::elem_size(e) as usize;
+    let Some(dst) = mem.get_mut(o..o + size) else {
+        return false;
+    };
+    match (e, v) {
+        (E::Bool, Value::Bool(b)) => dst[0] = *b as u8,
+        (E::Bool, Value::Int(i)) => dst[0] = (*i != 0) as u8,
+        (E::Real, Value::Real(r)) => dst.copy_from_slice(&(*r as f32).to_le_bytes()),
+        (E::Lreal, Value::Real(r)) => dst.copy_from_slice(&r.to_le_bytes()),
+        (_, Value::Int(i)) => dst.copy_from_slice(&i.to_le_bytes()[..size]),
+        (_, Value::Bool(b)) => {
+            dst.fill(0);
+            dst[0] = *b as u8;
+        }
+        _ => return false,
+    }
+    true
+}
+
+/// A STRING or WSTRING: a 2-byte length, then `cap` characters.
+pub fn read_string(mem: &[u8], off: u32, wide: bool, cap: u32) -> Option<Value> {
+    let o = off as usize;
+    let len = (u16::from_le_bytes(mem.get(o..o + 2)?.try_into().ok()?) as u32).min(cap) as usize;
+    if wide {
+        let bytes = mem.get(o + 2..o + 2 + 2 * len)?;
+        Some(Value::WStr(
+            bytes
+                .chunks_exact(2)
+                .map(|c| u16::from_le_bytes([c[0], c[1]]))
+                .collect(),
+        ))
+    } else {
+        Some(Value::Str(mem.get(o + 2..o + 2 + len)?.to_vec()))
+    }
+}
+
+pub fn write_string(mem: &mut [u8], off: u32, wide: bool, cap: u32, v: &Value) -> bool {
+    let o = off as usize;
+    match (wide, v) {
+        (false, Value::Str(s)) => {
+            let n = s.len().min(cap as usize);
+            let Some(dst) = mem.get_mut(o..o + 2 + n) else {
+                return false;
+            };
+            dst[..2].copy_from_slice(&(n as u16).to_le_bytes());
+            dst[2..].copy_from_slice(&s[..n]);
+            true
+        }
+        (true, Value::WStr(s)) => {
+            let n = s.len().min(cap as usize);
+            let Some(dst) = mem.get_mut(o..o + 2 + 2 * n) else {
+                return false;
+            };
+            dst[..2].copy_from_slice(&(n as u16).to_le_bytes());
+            for (i, u) in s[..n].iter().enumerate() {
+                dst[2 + 2 * i..4 + 2 * i].copy_from_slice(&u.to_le_bytes());
+            }
+            true
+        }
+        _ => false,
+    }
+}

@@ -1,0 +1,397 @@
+//! The verifier: an image that passes can be run without any risk to the
+//! host. It checks every table and every instruction against the memory
+//! layout: jump targets stay inside their POU's code, operands stay inside
+//! the area their mode addresses (the frame of the POU, the instance of a
+//! function block, the data and constant areas), calls name POUs of the
+//! right kind and reserve callee frames inside the caller's, standard-call
+//! descriptors are well formed, and the call graph has no cycle, so the
+//! stack needed is bounded by the largest program frame. Accesses through
+//! computed addresses (`load`, `store`, `index`) cannot be proven statically;
+//! the interpreter bounds-checks every access anyway.
+
+use crate::image::*;
+use crate::instr::{FieldKind, Instr, Op, MODE_ABS, MODE_FRAME, MODE_THIS};
+use crate::num::Num;
+
+const MAX_MEMORY: u64 = 1 << 30;
+
+pub fn verify(img: &Image) -> Result<(), String> {
+    if img.init.len() as u64 != img.data_size as u64 {
+        return Err("the initial data does not match the data size".into());
+    }
+    if img.memory_size() > MAX_MEMORY {
+        return Err("the program needs more than 1 GiB of memory".into());
+    }
+    let code_len = img.code.len() as u32;
+    // Types.
+    for t in &img.types {
+        match t {
+            TypeDesc::Array { elem, .. } => type_ok(img, *elem)?,
+            TypeDesc::Struct { fields, .. } => {
+                for f in fields {
+                    type_ok(img, f.ty)?;
+                }
+            }
+            TypeDesc::Instance { pou } if *pou as usize >= img.pous.len() => {
+                return Err("a type names an unknown POU".into())
+            }
+            _ => {}
+        }
+    }
+    // POUs and the code ranges they own.
+    let mut ranges: Vec<(u32, usize)> = Vec::new();
+    for (i, p) in img.pous.iter().enumerate() {
+        if p.entry >= code_len {
+            return Err(format!("POU `{}` starts outside the code", p.name));
+        }
+        let (t0, tl) = p.frame_template;
+        if t0 as u64 + tl as u64 > img.consts.len() as u64
+            || p.frame_init_at as u64 + tl as u64 > p.frame_size as u64
+        {
+            return Err(format!("POU `{}` has an invalid frame template", p.name));
+        }
+        if p.kind == PouKind::Function && p.instance_size != 0 {
+            return Err(format!("function `{}` has an instance", p.name));
+        }
+        type_ok(img, p.instance_type)?;
+        for v in &p.vars {
+            type_ok(img, v.ty)?;
+        }
+        ranges.push((p.entry, i));
+    }
+    ranges.sort();
+    if let Some(w) = ranges.windows(2).find(|w| w[0].0 == w[1].0) {
+        return Err(format!(
+            "two POUs share their first instruction ({})",
+            w[0].0
+        ));
+    }
+    if ranges.first().is_some_and(|r| r.0 != 0) && code_len > 0 {
+        return Err("instructions before the first POU".into());
+    }
+    // Each instruction, in the context of the POU that owns it.
+    let mut edges: Vec<Vec<usize>> = vec![Vec::new(); img.pous.len()];
+    for (k, &(start, pi)) in ranges.iter().enumerate() {
+        let end = ranges.get(k + 1).map_or(code_len, |r| r.0);
+        let pou = &img.pous[pi];
+        for pc in start..end {
+            let ins = &img.code[pc as usize];
+            instr_ok(img, pou, ins, start, end, &mut edges[pi]).map_err(|e| {
+                format!(
+                    "instruction {pc} ({}) in `{}`: {e}",
+                    ins.mnemonic(),
+                    pou.name
+                )
+            })?;
+        }
+    }
+    // No recursion: the call graph is acyclic.
+    let mut state = vec![0u8; img.pous.len()];
+    for s in 0..img.pous.len() {
+        if state[s] != 0 {
+            continue;
+        }
+        let mut stack = vec![(s, 0usize)];
+        state[s] = 1;
+        while let Some(&mut (v, ref mut i)) = stack.last_mut() {
+            if let Some(&w) = edges[v].get(*i) {
+                *i += 1;
+                match state[w] {
+                    0 => {
+                        state[w] = 1;
+                        stack.push((w, 0));
+                    }
+                    1 => return Err(format!("POU `{}` is recursive", img.pous[w].name)),
+                    _ => {}
+                }
+            } else {
+                state[v] = 2;
+                stack.pop();
+            }
+        }
+    }
+    // Program instances, globals, the process image.
+    let data = img.data_size as u64;
+    let abs_end = data + img.consts.len() as u64;
+    let programs = img.programs.iter().chain(
+        img.configs
+            .iter()
+            .flat_map(|c| c.resources.iter().flat_map(|r| r.programs.iter())),
+    );
+    for p in programs {
+        let pou = img
+            .pous
+            .get(p.pou as usize)
+            .ok_or("a program instance names an unknown POU")?;
+        if pou.kind != PouKind::Program {
+            return Err(format!("program instance `{}` is not of a PROGRAM", p.name));
+        }
+        if p.offset as u64 + pou.instance_size as u64 > data {
+            return Err(format!(
+                "program instance `{}` lies outside the data area",
+                p.name
+            ));
+        }
+        if pou.frame_size > img.stack_size {
+            return Err(format!("the stack is too small for program `{}`", pou.name));
+        }
+        for (off, ty, Source::Addr { offset, ty: sty }) in p.inputs.iter().chain(p.outputs.iter()) {
+            type_ok(img, *ty)?;
+            type_ok(img, *sty)?;
+            if *off as u64 + value_size(img, *ty) > pou.instance_size as u64
+                || *offset as u64 + value_size(img, *sty) > abs_end
+            {
+                return Err(format!("a connection of `{}` lies outside memory", p.name));
+            }
+        }
+    }
+    for c in &img.configs {
+        for r in &c.resources {
+            for t in &r.tasks {
+                if let Some(Source::Addr { offset, ty }) = &t.single {
+                    type_ok(img, *ty)?;
+                    if *offset as u64 + 1 > abs_end {
+                        return Err(format!(
+                            "the SINGLE input of task `{}` lies outside memory",
+                            t.name
+                        ));
+                    }
+                }
+            }
+            for p in &r.programs {
+                if p.task.is_some_and(|t| t as usize >= r.tasks.len()) {
+                    return Err(format!(
+                        "program instance `{}` names an unknown task",
+                        p.name
+                    ));
+                }
+            }
+        }
+    }
+    for g in &img.globals {
+        type_ok(img, g.ty)?;
+        if g.offset as u64 + value_size(img, g.ty) > data {
+            return Err(format!("global `{}` lies outside the data area", g.name));
+        }
+    }
+    for s in &img.io {
+        type_ok(img, s.ty)?;
+        if s.offset as u64 + value_size(img, s.ty) > data {
+            return Err(format!(
+                "process image slot {} lies outside the data area",
+                s.address
+            ));
+        }
+    }
+    let mut last = None;
+    for l in &img.lines {
+        if last.is_some_and(|p| l.pc < p)
+            || l.pc > code_len
+            || l.pou as usize >= img.pous.len()
+            || l.file as usize >= img.files.len().max(1)
+        {
+            return Err("the line table is invalid".into());
+        }
+        last = Some(l.pc);
+    }
+    Ok(())
+}
+
+fn type_ok(img: &Image, t: TypeRef) -> Result<(), String> {
+    if (t as usize) < img.types.len() {
+        Ok(())
+    } else {
+        Err(format!("type index {t} is out of range"))
+    }
+}
+
+/// The size in bytes of a value of a type (bounded, for range checks).
+fn value_size(img: &Image, t: TypeRef) -> u64 {
+    match img.types.get(t as usize) {
+        Some(TypeDesc::Scalar(e)) => stc_ir::layout::elem_size(*e) as u64,
+        Some(TypeDesc::Enum { base, .. }) => stc_ir::layout::elem_size(*base) as u64,
+        Some(TypeDesc::String { wide, cap }) => 2 + *cap as u64 * if *wide { 2 } else { 1 },
+        Some(TypeDesc::Array { dims, stride, .. }) => {
+            let n: i128 = dims
+                .iter()
+                .map(|(l, h)| (*h as i128 - *l as i128 + 1).max(0))
+                .product();
+            (n.clamp(0, u32::MAX as i128) as u64).saturating_mul(*stride as u64)
+        }
+        Some(TypeDesc::Struct { fields, .. }) => fields
+            .iter()
+            .map(|f| f.offset as u64 + 1)
+            .max()
+            .unwrap_or(0),
+        Some(TypeDesc::Instance { pou }) => img
+            .pous
+            .get(*pou as usize)
+            .map_or(0, |p| p.instance_size as u64),
+        None => 0,
+    }
+}
+
+/// An operand of `size` bytes in the context of POU `pou`.
+fn op_ok(img: &Image, pou: &PouCode, op: Op, size: u64) -> Result<(), String> {
+    let end = op.offset() as u64 + size;
+    let ok = match op.mode() {
+        MODE_FRAME => end <= pou.frame_size as u64,
+        MODE_THIS => pou.kind != PouKind::Function && end <= pou.instance_size as u64,
+        MODE_ABS => end <= img.data_size as u64 + img.consts.len() as u64,
+        _ => false,
+    };
+    if ok {
+        Ok(())
+    } else {
+        Err(format!(
+            "operand {op:?} of {size} bytes is outside its area"
+        ))
+    }
+}
+
+fn instr_ok(
+    img: &Image,
+    pou: &PouCode,
+    ins: &Instr,
+    start: u32,
+    end: u32,
+    edges: &mut Vec<usize>,
+) -> Result<(), String> {
+    let kinds = Instr::field_kinds(ins.opcode()).ok_or("unknown opcode")?;
+    let fields = ins.fields();
+    // A comparison writes a BOOL whatever the width of its operands.
+    let mn = ins.mnemonic();
+    let compares = ["eq.", "ne.", "lt.", "le."]
+        .iter()
+        .any(|p| mn.starts_with(p));
+    for (i, (k, &f)) in kinds.iter().zip(fields.iter()).enumerate() {
+        match k {
+            FieldKind::Target if f < start || f >= end => {
+                return Err(format!("jump to {f} leaves the POU"))
+            }
+            FieldKind::Op(n) if *n > 0 => {
+                let size = if compares && i == 0 { 1 } else { *n as u64 };
+                op_ok(img, pou, Op(f), size)?
+            }
+            _ => {}
+        }
+    }
+    let num = |c: u32| Num::from_code(c).ok_or_else(|| format!("unknown scalar code {c}"));
+    match *ins {
+        Instr::Copy { d, a, len } => {
+            op_ok(img, pou, d, len as u64)?;
+            op_ok(img, pou, a, len as u64)?;
+        }
+        Instr::StrCopy { d, a, cap, unit } => {
+            if unit != 1 && unit != 2 {
+                return Err("a string unit must be 1 or 2 bytes".into());
+            }
+            op_ok(img, pou, d, 2 + cap as u64 * unit as u64)?;
+            op_ok(img, pou, a, 2)?;
+        }
+        Instr::Cvt { d, a, from, to } => {
+            op_ok(img, pou, a, num(from)?.size() as u64)?;
+            op_ok(img, pou, d, num(to)?.size() as u64)?;
+        }
+        Instr::Check { a, lo, hi, num: n } => {
+            let s = num(n)?.size() as u64;
+            op_ok(img, pou, a, s)?;
+            op_ok(img, pou, lo, s)?;
+            op_ok(img, pou, hi, s)?;
+        }
+        Instr::GetPart {
+            d, a, width, part, ..
+        }
+        | Instr::SetPart {
+            d, a, width, part, ..
+        } => {
+            if !matches!(width, 8 | 16 | 32 | 64) || !matches!(part, 1 | 8 | 16 | 32) {
+                return Err("invalid part access widths".into());
+            }
+            let (dw, aw) = if matches!(ins, Instr::GetPart { .. }) {
+                (part.max(8), width)
+            } else {
+                (width, part.max(8))
+            };
+            op_ok(img, pou, d, dw as u64 / 8)?;
+            op_ok(img, pou, a, aw as u64 / 8)?;
+        }
+        Instr::Index { d, a, idx, lo, .. } => {
+            op_ok(img, pou, d, 4)?;
+            op_ok(img, pou, a, 4)?;
+            op_ok(img, pou, idx, 8)?;
+            op_ok(img, pou, lo, 8)?;
+        }
+        Instr::Load { d, p, len, .. } => {
+            op_ok(img, pou, d, len as u64)?;
+            op_ok(img, pou, p, 4)?;
+        }
+        Instr::Store { p, a, len, .. } => {
+            op_ok(img, pou, a, len as u64)?;
+            op_ok(img, pou, p, 4)?;
+        }
+        Instr::CallFn { pou: callee, frame } => {
+            let c = img
+                .pous
+                .get(callee as usize)
+                .ok_or("call of an unknown POU")?;
+            if c.kind != PouKind::Function {
+                return Err(format!("`{}` is not a function", c.name));
+            }
+            frame_ok(pou, c, frame)?;
+            edges.push(callee as usize);
+        }
+        Instr::CallFb {
+            pou: callee,
+            inst,
+            frame,
+        }
+        | Instr::CallFbInd {
+            pou: callee,
+            inst,
+            frame,
+        } => {
+            let c = img
+                .pous
+                .get(callee as usize)
+                .ok_or("call of an unknown POU")?;
+            if c.kind == PouKind::Function {
+                return Err(format!("`{}` is a function, not a function block", c.name));
+            }
+            if matches!(ins, Instr::CallFb { .. }) {
+                op_ok(img, pou, inst, c.instance_size as u64)?;
+            }
+            frame_ok(pou, c, frame)?;
+            edges.push(callee as usize);
+        }
+        Instr::Std { call } => {
+            let c = img
+                .calls
+                .get(call as usize)
+                .ok_or("unknown standard call")?;
+            for &(op, e, cap) in c.args.iter().chain(std::iter::once(&c.result)) {
+                let size = match e {
+                    stc_syntax::token::ElemType::String => 2 + cap as u64,
+                    stc_syntax::token::ElemType::Wstring => 2 + 2 * cap as u64,
+                    e => stc_ir::layout::elem_size(e) as u64,
+                };
+                op_ok(img, pou, op, size)?;
+            }
+        }
+        Instr::Fault { kind } if kind > 7 => return Err("unknown fault kind".into()),
+        _ => {}
+    }
+    Ok(())
+}
+
+/// A callee's frame must lie inside the caller's.
+fn frame_ok(caller: &PouCode, callee: &PouCode, frame: u32) -> Result<(), String> {
+    if frame as u64 + callee.frame_size as u64 <= caller.frame_size as u64 {
+        Ok(())
+    } else {
+        Err(format!(
+            "the frame of `{}` does not fit in the caller's",
+            callee.name
+        ))
+    }
+}

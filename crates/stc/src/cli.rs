@@ -49,6 +49,13 @@ enum Command {
         #[arg(required = true)]
         files: Vec<PathBuf>,
     },
+    /// Compile and execute the sources in simulated time (or real time).
+    Run {
+        #[command(flatten)]
+        common: Common,
+        #[command(flatten)]
+        args: crate::run::RunArgs,
+    },
     /// Explain a diagnostic code.
     Explain {
         /// A code such as E0301.
@@ -182,6 +189,7 @@ fn usage_error(msg: impl std::fmt::Display) -> Outcome {
 fn run(cli: Cli) -> Outcome {
     match cli.command {
         Command::Explain { code } => explain(&code),
+        Command::Run { common, args } => crate::run::run(&common.options(), args),
         Command::Check { common, files } => {
             let opts = common.options();
             match sources::load(&files) {

@@ -9,6 +9,8 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
+mod vm;
+
 struct Counting;
 
 static LIVE: AtomicUsize = AtomicUsize::new(0);
@@ -92,6 +94,11 @@ fn main() {
             std::process::exit(2);
         };
         std::fs::write(path, stc_bench::generate(lines)).expect("cannot write the file");
+        return;
+    }
+    if args.get(1).map(|s| s.as_str()) == Some("vm") {
+        let cycles: u64 = args.get(2).and_then(|n| n.parse().ok()).unwrap_or(200);
+        vm::run_kernels(cycles, args.get(3).map(|s| s.as_str()));
         return;
     }
     let sizes: Vec<usize> = std::env::args()

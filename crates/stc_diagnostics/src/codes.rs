@@ -60,8 +60,10 @@ example `$`, `?` or a non-ASCII character outside a string or comment. Remove
 it, or put text in a string literal ('...') or a comment (* ... *).";
     E0002 Error "unterminated comment"
 "A comment was opened with `(*` or `/*` but never closed before the end of the
-file. `(* ... *)` comments nest: every `(*` inside needs its own `*)`. The
-error points at where the unclosed comment starts.";
+file. `(* ... *)` comments nest: every `(*` inside needs its own `*)`; a
+comment that nesting leaves open is read again without nesting (W0003), and
+only when no `*)` follows at all is it this error. The error points at where
+the unclosed comment starts.";
     E0003 Error "unterminated string literal"
 "A string literal was opened with ' or \" but not closed on the same line. A
 quote inside a string is written `$'` (or `$\"` in a WSTRING), a line break
@@ -111,7 +113,10 @@ an IF closed by END_WHILE. The secondary label shows the block that is open.";
     E0022 Error "reserved word used as a name"
 "A keyword or an elementary type name (IF, END_VAR, INT, TIME, DT, ...) cannot
 be used as the name of a variable, type or POU. Standard function names (MAX,
-LEN) and IL operators (LD, ST, S, R) are not reserved and may be used.";
+LEN) and IL operators (LD, ST, S, R) are not reserved and may be used. The
+error is given once, where the name is declared: its uses then work as the
+name, so rename the declaration and its uses together. A reserved word used
+as a name that nothing declares is reported where it is used.";
     E0023 Error "nesting too deep"
 "Expressions or statements are nested deeper than stc supports (for example
 thousands of nested parentheses). Split the expression with intermediate
@@ -119,14 +124,27 @@ variables.";
     E0030 Error "not supported yet"
 "The construct is valid in some IEC 61131-3 dialect but stc does not support
 it yet: Instruction List bodies, Sequential Function Charts, the
-object-oriented extensions (METHOD, PROPERTY, INTERFACE, EXTENDS, IMPLEMENTS),
-POINTER TO and REFERENCE TO, and `{attribute ...}` pragmas. The construct is
-skipped as a whole so the rest of the file is still checked.";
+object-oriented extensions (METHOD, PROPERTY, ACTION, INTERFACE, EXTENDS,
+IMPLEMENTS), POINTER TO, REFERENCE TO, REF_TO and the dereference `^`,
+`REF=`, UNION types, VAR_STAT/VAR_INST sections, variable-length arrays
+(`ARRAY[*]`, `ARRAY[..]`), the `__` operators of CODESYS and TwinCAT
+(`__TRY`, `__NEW`...), logi.CAD UNIT files and `{attribute ...}` pragmas. The
+construct is reported once and skipped (or given an unknown type), and
+nothing that follows from it is reported again, so the rest of the file is
+still checked.";
     W0001 Warning "source is not UTF-8"
 "The file is not valid UTF-8, so it was read as Windows-1252, the encoding
 most PLC tools export. If the text looks wrong, convert the file to UTF-8.";
     W0002 Warning "pragma ignored"
-"stc does not understand the content of this pragma `{ ... }` and ignores it.";
+"stc does not understand the content of this pragma `{ ... }` (or the
+MatIEC `{{ ... }}` block of embedded C code) and ignores it.";
+    W0003 Warning "nested comment not closed"
+"`(* ... *)` comments nest, so every `(*` inside a comment needs its own `*)`.
+This comment contains a `(*` (often in code that was commented out, or the
+2nd-edition habit of writing `(*` inside a comment), and counting it, the
+comment is never closed: it would run to the end of the file. stc read it
+again without nesting: it ends at its first `*)`, as in IEC 61131-3 2nd
+edition. Add the missing `*)`, or remove the inner `(*`.";
 
     E0101 Error "undeclared variable"
 "The name is not declared as a variable of this POU. Inside a POU only its own
@@ -139,7 +157,9 @@ declared in a TYPE ... END_TYPE block, function blocks with FUNCTION_BLOCK.";
 "No function, function block type or standard function has this name.";
     E0104 Error "no such member"
 "The structure has no member, or the function block no input or output, with
-this name.";
+this name. Only the inputs and outputs of a function block instance are
+visible from outside it (and its implicit EN and ENO); its VAR, VAR_TEMP and
+VAR_IN_OUT variables are not.";
     E0105 Error "duplicate declaration"
 "The name is already declared in the same scope (a variable twice in one POU,
 two POUs or types with the same name, two tasks of a resource). Names are
@@ -188,12 +208,14 @@ data type.";
 implicit conversion exists between them. IEC 61131-3 is strongly typed: use an
 explicit conversion function such as BOOL_TO_INT or INT_TO_REAL.";
     E0302 Error "implicit conversion may lose information"
-"A value would be converted implicitly to a type that cannot represent all its
-values (for example DINT to INT, LREAL to REAL, or a signed to an unsigned
-type). Only widening conversions that lose no information are implicit
-(SINT to INT, INT to REAL, REAL to LREAL, BYTE to WORD, ...); with
-`--std iec2` no conversion is implicit. Use the explicit conversion function
-named in the help.";
+"A value would be converted implicitly where no implicit conversion exists:
+either to a type that cannot represent all its values (DINT to INT, LREAL to
+REAL, a signed to an unsigned type), or between a bit string and a number
+(BYTE to INT, UINT to WORD), which loses nothing but is never implicit. Only
+the widening conversions of the 3rd edition are implicit (SINT to INT, INT to
+REAL, REAL to LREAL, BYTE to WORD, ...); with `--std iec2` no conversion is
+implicit. The message says which case it is; use the explicit conversion
+function named in the help.";
     E0303 Error "literal out of range"
 "The literal does not fit in the type it takes from its context, for example
 `300` assigned to a SINT (-128..127) or `-1` to a UINT.";
@@ -308,7 +330,9 @@ once each time it rises.";
 and read by another argument of the same enclosing call. IEC 61131-3 does not
 fix the order in which arguments are evaluated, so other tools may compute a
 different result (stc evaluates left to right). Store the output in a
-separate variable first.";
+separate variable first. Accesses are compared as paths: different members
+of a structure, or array elements with different constant indices, do not
+overlap.";
     W0102 Warning "local enumeration value hides a global one"
 "A value of an anonymous enumeration declared in this POU has the same name as
 a value of a global enumeration type. Inside the POU the unqualified name
@@ -332,7 +356,9 @@ there.";
 type. The value wraps around in two's complement, as it would at run time.";
     W0108 Warning "constant condition"
 "The condition is always TRUE or always FALSE, so one branch is dead code or
-the loop never (or always) runs.";
+the loop never (or always) runs. The idiom of a loop left in the middle,
+`WHILE TRUE DO ... EXIT ... END_WHILE` or `REPEAT ... UNTIL FALSE` with an
+EXIT or RETURN in its body, is not reported.";
     W0109 Warning "local name hides a global one"
 "A local variable has the same name as a global variable, a POU or a data
 type, which it hides inside this POU.";

@@ -48,8 +48,12 @@ pub struct Module {
     pub pous: Vec<Pou>,
     pub globals: Vec<Global>,
     pub configs: Vec<stc_sema::ConfigDef>,
-    /// Names as spelled at their declaration, by symbol.
+    /// Names as spelled at their declaration, by symbol (the last
+    /// declaration of the symbol wins: see [`Module::spelled`]).
     pub names: Vec<String>,
+    /// The spelling at each declaration, by the position where its name
+    /// starts: a type `Valve` and a variable `valve` keep their own.
+    pub spellings: rustc_hash::FxHashMap<u32, Box<str>>,
 }
 
 impl Module {
@@ -68,6 +72,24 @@ impl Module {
 
     pub fn pou(&self, p: PouId) -> &Pou {
         &self.pous[p.0 as usize]
+    }
+
+    /// The name declared at `span` as spelled there (else as [`Module::name`]).
+    pub fn spelled(&self, s: Symbol, span: Span) -> &str {
+        match self.spellings.get(&span.lo) {
+            Some(t) => t,
+            None => self.name(s),
+        }
+    }
+
+    /// The spelling of a named type's declaration.
+    pub fn type_name(&self, t: TypeId) -> Option<&str> {
+        let info = self.types.get(t);
+        let n = info.name?;
+        Some(match info.name_span {
+            Some(sp) => self.spelled(n, sp),
+            None => self.name(n),
+        })
     }
 
     pub fn name(&self, s: Symbol) -> &str {
@@ -127,6 +149,8 @@ pub struct Pou {
     pub body: Vec<Stmt>,
     pub is_std: bool,
     pub span: Span,
+    /// Where its name is declared (its spelling).
+    pub name_span: Span,
     /// The source file the POU comes from (for fault reports).
     pub file: String,
 }

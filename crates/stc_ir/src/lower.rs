@@ -1,7 +1,10 @@
 //! Lowering: the analysed syntax tree to the IR.
 
 use stc_diagnostics::{SourceMap, Span};
-use stc_sema::{Analysis, BoundArgKind, CallTarget, PouId, Res, Section, TypeId, TypeKind, VarId};
+use stc_sema::{
+    Analysis, BoundArgKind, CallInfo, CallTarget, InitValue, PouId, Res, Section, TypeId, TypeKind,
+    VarId,
+};
 use stc_syntax::ast::{self as ast, Ast, ExprId, ExprKind as AK, Item, PouKind, StmtKind as SK};
 use stc_syntax::token::ElemType;
 use stc_syntax::Interner;
@@ -18,12 +21,14 @@ pub fn lower(ast: &Ast, analysis: Analysis, interner: &Interner, sources: &Sourc
         .map(|i| interner.spelling(stc_syntax::Symbol(i as u32)).to_string())
         .collect();
     // Outputs show a name as spelled at its declaration.
+    let mut spellings = rustc_hash::FxHashMap::default();
     let mut declare = |sym: stc_syntax::Symbol, span: Span| {
         let s = sources.slice(span);
         if !s.is_empty() && s.eq_ignore_ascii_case(interner.key(sym)) {
             if let Some(slot) = names.get_mut(sym.0 as usize) {
                 *slot = s.to_string();
             }
+            spellings.insert(span.lo, Box::<str>::from(s));
         }
     };
     for p in &analysis.pous {
@@ -46,10 +51,8 @@ pub fn lower(ast: &Ast, analysis: Analysis, interner: &Interner, sources: &Sourc
     }
     for t in 0..analysis.types.len() {
         let info = analysis.types.get(TypeId(t as u32));
-        if let (Some(n), Some(span)) = (info.name, info.span) {
-            let text = sources.slice(span);
-            let _ = text;
-            let _ = n;
+        if let (Some(n), Some(span)) = (info.name, info.name_span) {
+            declare(n, span);
         }
         if let TypeKind::Enum { values, .. } = &info.kind {
             for v in values {
@@ -62,6 +65,22 @@ pub fn lower(ast: &Ast, analysis: Analysis, interner: &Interner, sources: &Sourc
             }
         }
     }
+    // The implicit EN and ENO of a POU get storage only when some code
+    // refers to them (they come after every declared variable, so dropping
+    // them keeps every other VarId).
+    let keeps: Vec<bool> = analysis
+        .pous
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            p.vars.iter().enumerate().any(|(v, var)| {
+                var.implicit
+                    && analysis
+                        .implicit_used
+                        .contains(&(PouId(i as u32), VarId(v as u32)))
+            })
+        })
+        .collect();
     let mut pous = Vec::with_capacity(analysis.pous.len());
     for (i, def) in analysis.pous.iter().enumerate() {
         let Item::Pou(src) = &ast.items[def.item] else {
@@ -73,6 +92,8 @@ pub fn lower(ast: &Ast, analysis: Analysis, interner: &Interner, sources: &Sourc
             sources,
             pou: PouId(i as u32),
             vars: Vec::new(),
+            keeps: &keeps,
+            pending: Vec::new(),
         };
         pous.push(l.pou(def, src));
     }
@@ -95,6 +116,7 @@ pub fn lower(ast: &Ast, analysis: Analysis, interner: &Interner, sources: &Sourc
         globals,
         configs: analysis.configs,
         names,
+        spellings,
     }
 }
 
@@ -104,14 +126,22 @@ struct Lowerer<'a> {
     sources: &'a SourceMap,
     pou: PouId,
     vars: Vec<Var>,
+    /// Per POU: whether its implicit EN and ENO have storage.
+    keeps: &'a [bool],
+    /// Statements that must run before the statement being lowered: calls
+    /// with EN or ENO taken out of an expression (and the operands before
+    /// them, so evaluation stays left to right).
+    pending: Vec<Stmt>,
 }
 
 impl<'a> Lowerer<'a> {
     fn pou(&mut self, def: &stc_sema::PouDef, src: &'a ast::Pou) -> Pou {
         let function = def.kind == PouKind::Function;
+        let keep = self.keeps[self.pou.0 as usize];
         self.vars = def
             .vars
             .iter()
+            .filter(|v| keep || !v.implicit)
             .map(|v| Var {
                 name: v.name,
                 ty: v.ty,
@@ -134,6 +164,25 @@ impl<'a> Lowerer<'a> {
             .collect();
         let mut body = Vec::new();
         let (line, col) = self.line_col(src.span);
+        // ENO is TRUE at the start of every call.
+        if let Some(eno) = def.eno.filter(|v| keep && def.var(*v).implicit) {
+            let bool_ty = self.bool_ty();
+            body.push(Stmt {
+                kind: StmtKind::Assign {
+                    place: Place {
+                        root: Root::Var(eno),
+                        proj: vec![],
+                        ty: bool_ty,
+                    },
+                    value: Expr {
+                        kind: ExprKind::Const(Value::Bool(true)),
+                        ty: bool_ty,
+                    },
+                },
+                line,
+                col,
+            });
+        }
         // R_EDGE / F_EDGE inputs: the input is TRUE only on the edge.
         for (i, v) in def.vars.iter().enumerate() {
             let Some(edge) = v.edge else { continue };
@@ -201,6 +250,7 @@ impl<'a> Lowerer<'a> {
             body,
             is_std: def.is_std,
             span: def.span,
+            name_span: def.name_span,
             file,
         }
     }
@@ -266,10 +316,11 @@ impl<'a> Lowerer<'a> {
     fn stmt(&mut self, s: &'a ast::Stmt, out: &mut Vec<Stmt>) {
         let at = |l: &Self, k| l.stmt_at(s.span, k);
         match &s.kind {
-            SK::Empty | SK::Error => {}
+            SK::Empty | SK::Error | SK::Unsupported(_) => {}
             SK::Assign { target, value } => {
                 let place = self.place(*target);
                 let mut v = self.expr(*value);
+                out.append(&mut self.pending);
                 if let TypeKind::Subrange { lo, hi, .. } = self.a.types.kind(place.ty) {
                     if !matches!(v.kind, ExprKind::Const(_)) {
                         v = Expr {
@@ -286,7 +337,10 @@ impl<'a> Lowerer<'a> {
             }
             SK::Call(e) => {
                 let k = self.call_stmt(*e);
-                out.push(at(self, k));
+                out.append(&mut self.pending);
+                if let Some(k) = k {
+                    out.push(at(self, k));
+                }
             }
             SK::If {
                 branches,
@@ -298,9 +352,10 @@ impl<'a> Lowerer<'a> {
                 };
                 for b in branches.iter().rev() {
                     let cond = self.expr(b.cond);
+                    let mut pre = std::mem::take(&mut self.pending);
                     let then_body = self.stmts(&b.body);
                     let (line, col) = self.line_col(self.ast.expr(b.cond).span);
-                    else_part = vec![Stmt {
+                    pre.push(Stmt {
                         kind: StmtKind::If {
                             cond,
                             then_body,
@@ -308,7 +363,8 @@ impl<'a> Lowerer<'a> {
                         },
                         line,
                         col,
-                    }];
+                    });
+                    else_part = pre;
                 }
                 out.extend(else_part);
             }
@@ -318,6 +374,7 @@ impl<'a> Lowerer<'a> {
                 else_body,
             } => {
                 let sel = self.expr(*selector);
+                out.append(&mut self.pending);
                 let mut out_arms = Vec::new();
                 for arm in arms {
                     let mut ranges = Vec::new();
@@ -359,14 +416,15 @@ impl<'a> Lowerer<'a> {
             } => self.for_loop(s, *var, *from, *to, *by, body, out),
             SK::While { cond, body } => {
                 let c = self.expr(*cond);
-                let mut b = vec![self.stmt_at(
+                let mut b = std::mem::take(&mut self.pending);
+                b.push(self.stmt_at(
                     self.ast.expr(*cond).span,
                     StmtKind::If {
                         cond: c,
                         then_body: Vec::new(),
                         else_body: vec![self.stmt_at(s.span, StmtKind::Break)],
                     },
-                )];
+                ));
                 b.extend(self.stmts(body));
                 out.push(at(
                     self,
@@ -379,14 +437,15 @@ impl<'a> Lowerer<'a> {
             SK::Repeat { body, until } => {
                 let b = self.stmts(body);
                 let c = self.expr(*until);
-                let latch = vec![self.stmt_at(
+                let mut latch = std::mem::take(&mut self.pending);
+                latch.push(self.stmt_at(
                     self.ast.expr(*until).span,
                     StmtKind::If {
                         cond: c,
                         then_body: vec![self.stmt_at(s.span, StmtKind::Break)],
                         else_body: Vec::new(),
                     },
-                )];
+                ));
                 out.push(at(self, StmtKind::Loop { body: b, latch }));
             }
             SK::Exit => out.push(at(self, StmtKind::Break)),
@@ -439,6 +498,7 @@ impl<'a> Lowerer<'a> {
         let at = |l: &Self, k| l.stmt_at(s.span, k);
 
         let start = self.expr(from);
+        out.append(&mut self.pending);
         out.push(at(
             self,
             StmtKind::Assign {
@@ -448,6 +508,7 @@ impl<'a> Lowerer<'a> {
         ));
         let end_var = self.hidden(var.sym, "end", ty, Storage::Frame, var.span);
         let end = self.expr(to);
+        out.append(&mut self.pending);
         out.push(at(
             self,
             StmtKind::Assign {
@@ -476,6 +537,7 @@ impl<'a> Lowerer<'a> {
             None => {
                 let step_var = self.hidden(var.sym, "step", ty, Storage::Frame, var.span);
                 let b = by.map(|b| self.expr(b)).unwrap_or_else(|| konst(1));
+                out.append(&mut self.pending);
                 out.push(at(
                     self,
                     StmtKind::Assign {
@@ -587,26 +649,366 @@ impl<'a> Lowerer<'a> {
         ));
     }
 
-    fn call_stmt(&mut self, e: ExprId) -> StmtKind {
+    /// A call used as a statement; `None` when everything it does is in
+    /// `self.pending` (a call with EN or ENO).
+    fn call_stmt(&mut self, e: ExprId) -> Option<StmtKind> {
         let Some(info) = self.a.calls.get(&e) else {
-            return StmtKind::Eval(self.expr(e));
+            return Some(StmtKind::Eval(self.expr(e)));
         };
+        if info.en.is_some() || info.eno.is_some() {
+            let stmts = self.gated_call(e, info, false).0;
+            self.pending.extend(stmts);
+            return None;
+        }
         match &info.target {
             CallTarget::FbInstance(fb) => {
                 let AK::Call { callee, .. } = &self.ast.expr(e).kind else {
-                    return StmtKind::Eval(self.expr(e));
+                    return Some(StmtKind::Eval(self.expr(e)));
                 };
                 let instance = self.place(*callee);
                 let (inputs, inouts, outputs) = self.bind(&info.args);
-                StmtKind::CallFb {
+                Some(StmtKind::CallFb {
                     instance,
                     fb: *fb,
                     inputs,
                     inouts,
                     outputs,
+                })
+            }
+            _ => Some(StmtKind::Eval(self.expr(e))),
+        }
+    }
+
+    /// Whether a POU's EN or ENO variable has storage (declared by the
+    /// user, or implicit and referred to).
+    fn control_var(&self, q: PouId, v: Option<VarId>) -> Option<VarId> {
+        let v = v?;
+        let def = self.a.pou(q);
+        (!def.var(v).implicit || self.keeps[q.0 as usize]).then_some(v)
+    }
+
+    /// A call with EN or ENO (ed2 2.5.1.2), as ordinary statements so that
+    /// back ends need nothing new:
+    ///
+    /// ```text
+    /// IF en THEN [tmp :=] call(..., ENO => target); ELSE [tmp := default;] target := FALSE; END_IF
+    /// ```
+    ///
+    /// When EN is FALSE no input is evaluated or assigned, the body does not
+    /// run and no output is copied. A callee whose ENO has no storage (its
+    /// body never sets it) gives TRUE. With `want`, the function's value is
+    /// left in a temporary, which is returned.
+    fn gated_call(
+        &mut self,
+        e: ExprId,
+        info: &'a CallInfo,
+        want: bool,
+    ) -> (Vec<Stmt>, Option<Expr>) {
+        let span = self.ast.expr(e).span;
+        let ty = self.a.expr_type(e);
+        let bool_ty = self.bool_ty();
+        let konst_bool = |b: bool| Expr {
+            kind: ExprKind::Const(Value::Bool(b)),
+            ty: bool_ty,
+        };
+        let outer = std::mem::take(&mut self.pending);
+        let cond = info.en.map(|c| self.expr(c));
+        let mut out = std::mem::take(&mut self.pending);
+
+        // The call, when EN is TRUE.
+        let callee_name = match (&info.target, &self.ast.expr(e).kind) {
+            (CallTarget::Function(q) | CallTarget::FbInstance(q), _) => self.a.pou(*q).name,
+            (_, AK::Call { callee, .. }) => match &self.ast.expr(*callee).kind {
+                AK::Name(id) => id.sym,
+                _ => self.a.pou(self.pou).name,
+            },
+            _ => self.a.pou(self.pou).name,
+        };
+        let result = (want && ty != TypeId::VOID && ty != TypeId::ERROR)
+            .then(|| self.hidden(callee_name, "result", ty, Storage::Frame, span));
+        let mut eno_const = info.eno.is_some();
+        let mut else_resets: Vec<Place> = Vec::new();
+        let call = match &info.target {
+            CallTarget::Function(q) | CallTarget::FbInstance(q) => {
+                let q = *q;
+                let def = self.a.pou(q);
+                let (mut inputs, inouts, mut outputs) = self.bind(&info.args);
+                if let Some(en) = self.control_var(q, def.en) {
+                    inputs.push((en, konst_bool(true)));
+                }
+                if let (Some(eno), Some((target, negated))) =
+                    (self.control_var(q, def.eno), info.eno)
+                {
+                    eno_const = false;
+                    outputs.push(crate::Output {
+                        var: eno,
+                        target: self.place(target),
+                        negated,
+                    });
+                }
+                match &info.target {
+                    CallTarget::FbInstance(fb) => {
+                        let AK::Call { callee, .. } = &self.ast.expr(e).kind else {
+                            self.pending = outer;
+                            return (Vec::new(), None);
+                        };
+                        let instance = self.place(*callee);
+                        // When EN is FALSE the instance's own EN and ENO
+                        // are FALSE.
+                        for v in [def.en, def.eno] {
+                            if let Some(v) = self.control_var(q, v) {
+                                let mut p = instance.clone();
+                                p.proj.push(Proj::FbVar(*fb, v));
+                                p.ty = bool_ty;
+                                else_resets.push(p);
+                            }
+                        }
+                        StmtKind::CallFb {
+                            instance,
+                            fb: *fb,
+                            inputs,
+                            inouts,
+                            outputs,
+                        }
+                    }
+                    _ => {
+                        let value = Expr {
+                            kind: ExprKind::CallFn {
+                                func: q,
+                                inputs,
+                                inouts,
+                                outputs,
+                            },
+                            ty,
+                        };
+                        match result {
+                            Some(r) => StmtKind::Assign {
+                                place: self.var_place(r, ty),
+                                value,
+                            },
+                            None => StmtKind::Eval(value),
+                        }
+                    }
                 }
             }
-            _ => StmtKind::Eval(self.expr(e)),
+            CallTarget::Std { intrinsic, .. } => {
+                let values: Vec<ExprId> = info
+                    .args
+                    .iter()
+                    .map(|a| match &a.kind {
+                        BoundArgKind::Input(x)
+                        | BoundArgKind::InOut(x)
+                        | BoundArgKind::Output { target: x, .. } => *x,
+                    })
+                    .collect();
+                let args = self.seq(&values);
+                let value = self.intrinsic(*intrinsic, args, ty);
+                match result {
+                    Some(r) => StmtKind::Assign {
+                        place: self.var_place(r, ty),
+                        value,
+                    },
+                    None => StmtKind::Eval(value),
+                }
+            }
+            CallTarget::CurTime => {
+                let value = Expr {
+                    kind: ExprKind::CurTime,
+                    ty,
+                };
+                match result {
+                    Some(r) => StmtKind::Assign {
+                        place: self.var_place(r, ty),
+                        value,
+                    },
+                    None => StmtKind::Eval(value),
+                }
+            }
+        };
+        let mut then_body = std::mem::take(&mut self.pending);
+        then_body.push(self.stmt_at(span, call));
+        let eno = info.eno;
+        if let (true, Some((target, negated))) = (eno_const, eno) {
+            let place = self.place(target);
+            then_body.append(&mut self.pending);
+            then_body.push(self.stmt_at(
+                span,
+                StmtKind::Assign {
+                    place,
+                    value: konst_bool(!negated),
+                },
+            ));
+        }
+        match cond {
+            // No EN, or EN := TRUE: the call runs.
+            None
+            | Some(Expr {
+                kind: ExprKind::Const(Value::Bool(true)),
+                ..
+            }) => out.extend(then_body),
+            Some(cond) => {
+                let mut else_body = Vec::new();
+                if let Some(r) = result {
+                    let default = self.default_of(e, ty, &info.target);
+                    else_body.push(self.stmt_at(
+                        span,
+                        StmtKind::Assign {
+                            place: self.var_place(r, ty),
+                            value: default,
+                        },
+                    ));
+                }
+                for place in else_resets {
+                    else_body.push(self.stmt_at(
+                        span,
+                        StmtKind::Assign {
+                            place,
+                            value: konst_bool(false),
+                        },
+                    ));
+                }
+                if let Some((target, negated)) = eno {
+                    let place = self.place(target);
+                    else_body.append(&mut self.pending);
+                    else_body.push(self.stmt_at(
+                        span,
+                        StmtKind::Assign {
+                            place,
+                            value: konst_bool(negated),
+                        },
+                    ));
+                }
+                out.push(self.stmt_at(
+                    span,
+                    StmtKind::If {
+                        cond,
+                        then_body,
+                        else_body,
+                    },
+                ));
+            }
+        }
+        self.pending = outer;
+        let value = result.map(|r| Expr {
+            kind: ExprKind::Load(self.var_place(r, ty)),
+            ty,
+        });
+        (out, value)
+    }
+
+    /// The value of a function call whose EN is FALSE: its result type's
+    /// default (the initial value of the callee's result variable).
+    fn default_of(&mut self, e: ExprId, ty: TypeId, target: &CallTarget) -> Expr {
+        let init = match target {
+            CallTarget::Function(q) => self
+                .a
+                .pou(*q)
+                .vars
+                .first()
+                .filter(|v| v.section == Section::Result)
+                .and_then(|v| v.init.clone()),
+            _ => None,
+        };
+        match (init, self.a.types.scalar(ty)) {
+            (Some(InitValue::Scalar(v)), _) => Expr {
+                kind: ExprKind::Const(v),
+                ty,
+            },
+            (None, Some(s)) if !matches!(self.a.types.kind(ty), TypeKind::Enum { .. }) => Expr {
+                kind: ExprKind::Const(stc_values::default_value(s)),
+                ty,
+            },
+            (init, _) => {
+                // An array, a structure: a temporary that is never written
+                // holds the default.
+                let span = self.ast.expr(e).span;
+                let name = self.a.pou(self.pou).name;
+                let zero = self.hidden(name, "default", ty, Storage::Frame, span);
+                if let Some(slot) = self.vars.get_mut(zero.0 as usize) {
+                    slot.init = init;
+                }
+                Expr {
+                    kind: ExprKind::Load(self.var_place(zero, ty)),
+                    ty,
+                }
+            }
+        }
+    }
+
+    fn var_place(&self, v: VarId, ty: TypeId) -> Place {
+        Place {
+            root: Root::Var(v),
+            proj: vec![],
+            ty,
+        }
+    }
+
+    /// Lowers expressions in evaluation order. When one of them takes a
+    /// call out into `self.pending` (a call with EN), the ones before it are
+    /// stored in temporaries first, so they are still evaluated before it.
+    fn seq(&mut self, es: &[ExprId]) -> Vec<Expr> {
+        let mut done: Vec<Expr> = Vec::with_capacity(es.len());
+        for &e in es {
+            let mark = self.pending.len();
+            let x = self.expr(e);
+            if self.pending.len() > mark {
+                self.spill(&mut done, mark);
+            }
+            done.push(x);
+        }
+        done
+    }
+
+    /// Stores the values computed so far in temporaries, with the
+    /// assignments inserted into `self.pending` at `mark`.
+    fn spill(&mut self, done: &mut [Expr], mut mark: usize) {
+        for x in done.iter_mut() {
+            let stable = match &x.kind {
+                ExprKind::Const(_) => true,
+                ExprKind::Load(Place {
+                    root: Root::Var(v),
+                    proj,
+                    ..
+                }) => {
+                    proj.is_empty()
+                        && self
+                            .vars
+                            .get(v.0 as usize)
+                            .is_some_and(|v| v.hidden.is_some())
+                }
+                _ => false,
+            };
+            if stable {
+                continue;
+            }
+            let ty = x.ty;
+            let name = self.a.pou(self.pou).name;
+            let span = self.a.pou(self.pou).span;
+            let t = self.hidden(name, "spill", ty, Storage::Frame, span);
+            let value = std::mem::replace(
+                x,
+                Expr {
+                    kind: ExprKind::Load(self.var_place(t, ty)),
+                    ty,
+                },
+            );
+            let (line, col) = self
+                .pending
+                .get(mark)
+                .map(|s| (s.line, s.col))
+                .unwrap_or((0, 0));
+            self.pending.insert(
+                mark,
+                Stmt {
+                    kind: StmtKind::Assign {
+                        place: self.var_place(t, ty),
+                        value,
+                    },
+                    line,
+                    col,
+                },
+            );
+            mark += 1;
         }
     }
 
@@ -615,13 +1017,24 @@ impl<'a> Lowerer<'a> {
         &mut self,
         args: &[stc_sema::BoundArg],
     ) -> (Vec<(VarId, Expr)>, Vec<(VarId, Place)>, Vec<Output>) {
-        let mut inputs = Vec::new();
+        let mut inputs: Vec<(VarId, Expr)> = Vec::new();
         let mut inouts = Vec::new();
         let mut outputs = Vec::new();
         for a in args {
             let v = VarId(a.param);
             match &a.kind {
-                BoundArgKind::Input(e) => inputs.push((v, self.expr(*e))),
+                BoundArgKind::Input(e) => {
+                    let mark = self.pending.len();
+                    let x = self.expr(*e);
+                    if self.pending.len() > mark {
+                        let mut done: Vec<Expr> = inputs.iter().map(|(_, x)| x.clone()).collect();
+                        self.spill(&mut done, mark);
+                        for ((_, slot), x) in inputs.iter_mut().zip(done) {
+                            *slot = x;
+                        }
+                    }
+                    inputs.push((v, x));
+                }
                 BoundArgKind::InOut(e) => inouts.push((v, self.place(*e))),
                 BoundArgKind::Output { target, negated } => outputs.push(Output {
                     var: v,
@@ -683,8 +1096,13 @@ impl<'a> Lowerer<'a> {
                 )
             }
             AK::Binary { op, lhs, rhs } => {
-                let l = self.expr(*lhs);
+                let mut l = [self.expr(*lhs)];
+                let mark = self.pending.len();
                 let r = self.expr(*rhs);
+                if self.pending.len() > mark {
+                    self.spill(&mut l, mark);
+                }
+                let [l] = l;
                 ExprKind::Binary(bin_op(*op), Box::new(l), Box::new(r))
             }
             AK::Call { .. } => return self.call_expr(e, ty),
@@ -704,7 +1122,9 @@ impl<'a> Lowerer<'a> {
                 }
                 _ => ExprKind::Load(self.place(e)),
             },
-            AK::Literal(_) | AK::EnumValue { .. } | AK::Error => ExprKind::Const(Value::Int(0)),
+            AK::Literal(_) | AK::EnumValue { .. } | AK::Error | AK::Deref(_) => {
+                ExprKind::Const(Value::Int(0))
+            }
         };
         Expr { kind, ty }
     }
@@ -716,6 +1136,14 @@ impl<'a> Lowerer<'a> {
                 ty,
             };
         };
+        if info.en.is_some() || info.eno.is_some() {
+            let (stmts, value) = self.gated_call(e, info, true);
+            self.pending.extend(stmts);
+            return value.unwrap_or(Expr {
+                kind: ExprKind::Const(Value::Int(0)),
+                ty,
+            });
+        }
         let kind = match &info.target {
             CallTarget::Function(f) => {
                 let (inputs, inouts, outputs) = self.bind(&info.args);
@@ -729,15 +1157,16 @@ impl<'a> Lowerer<'a> {
             CallTarget::CurTime => ExprKind::CurTime,
             CallTarget::FbInstance(_) => ExprKind::Const(Value::Int(0)),
             CallTarget::Std { intrinsic, .. } => {
-                let args: Vec<Expr> = info
+                let values: Vec<ExprId> = info
                     .args
                     .iter()
                     .map(|a| match &a.kind {
                         BoundArgKind::Input(x)
                         | BoundArgKind::InOut(x)
-                        | BoundArgKind::Output { target: x, .. } => self.expr(*x),
+                        | BoundArgKind::Output { target: x, .. } => *x,
                     })
                     .collect();
+                let args = self.seq(&values);
                 return self.intrinsic(*intrinsic, args, ty);
             }
         };
@@ -859,10 +1288,11 @@ impl<'a> Lowerer<'a> {
                     TypeKind::Array { dims, .. } => dims.clone(),
                     _ => Vec::new(),
                 };
-                let idx: Vec<(Expr, i128, i128)> = indices
-                    .iter()
+                let values = self.seq(indices);
+                let idx: Vec<(Expr, i128, i128)> = values
+                    .into_iter()
                     .zip(dims.iter())
-                    .map(|(i, (lo, hi))| (self.expr(*i), *lo, *hi))
+                    .map(|(i, (lo, hi))| (i, *lo, *hi))
                     .collect();
                 p.proj.push(Proj::Index(idx));
                 p.ty = ty;
@@ -901,5 +1331,175 @@ fn bin_op(op: ast::BinaryOp) -> BinOp {
         B::Div => BinOp::Div,
         B::Mod => BinOp::Mod,
         B::Pow => BinOp::Pow,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use stc_diagnostics::SourceMap;
+
+    /// The IR dump of a valid program (no prelude).
+    fn ir(src: &str) -> String {
+        let mut sm = SourceMap::new();
+        sm.add("t.st", src.to_string()).expect("small source");
+        let mut interner = stc_syntax::Interner::new();
+        let (ast, diags) = stc_syntax::parse_project(&sm, &mut interner);
+        assert!(diags.is_empty(), "{diags:?}");
+        let a = stc_sema::analyze(&ast, &mut interner, &sm, None, Default::default());
+        assert!(a.diagnostics.is_empty(), "{:?}", a.diagnostics);
+        let m = super::lower(&ast, a, &interner, &sm);
+        crate::dump::dump(&m, false)
+    }
+
+    /// The dump without the `@line` markers, for comparing shapes.
+    fn shape(src: &str) -> String {
+        ir(src)
+            .lines()
+            .map(|l| l.split("  @").next().unwrap_or(l).trim_end())
+            .collect::<Vec<_>>()
+            .join("\n")
+    }
+
+    const HALF: &str = "FUNCTION Half : INT
+VAR_INPUT x : INT; END_VAR
+  Half := x / 2;
+END_FUNCTION
+";
+
+    #[test]
+    fn en_and_eno_cost_nothing_when_unused() {
+        let out = shape(&format!(
+            "{HALF}PROGRAM P VAR r : INT; END_VAR r := Half(x := 4); END_PROGRAM"
+        ));
+        assert!(
+            !out.contains("input EN") && !out.contains("output ENO"),
+            "{out}"
+        );
+        assert!(out.contains("r := Half(x := 4:INT):INT"), "{out}");
+    }
+
+    #[test]
+    fn a_call_with_en_runs_only_when_en_is_true() {
+        let out = shape(&format!(
+            "{HALF}PROGRAM P VAR go : BOOL; ok : BOOL; r : INT; END_VAR
+  r := Half(EN := go, x := 4, ENO => ok);
+END_PROGRAM"
+        ));
+        let want = "  if go
+    Half$result := Half(x := 4:INT):INT
+    ok := TRUE:BOOL
+  else
+    Half$result := 0:INT
+    ok := FALSE:BOOL
+  end
+  r := Half$result";
+        assert!(out.contains(want), "{out}");
+        // The callee never sets ENO: it needs no variable.
+        assert!(!out.contains("output ENO"), "{out}");
+    }
+
+    #[test]
+    fn eno_set_in_the_body_is_an_output_reset_every_call() {
+        let out = shape(
+            "FUNCTION_BLOCK Fb
+VAR_INPUT x : INT; END_VAR
+  IF x < 0 THEN ENO := FALSE; END_IF;
+END_FUNCTION_BLOCK
+PROGRAM P VAR f : Fb; go : BOOL; ok : BOOL; END_VAR
+  f(EN := go, x := 1, ENO => ok);
+END_PROGRAM",
+        );
+        assert!(
+            out.contains("  output ENO : BOOL\n  ENO := TRUE:BOOL"),
+            "{out}"
+        );
+        let want = "  if go
+    call f(x := 1:INT, EN := TRUE:BOOL, ENO => ok) : Fb
+  else
+    f.EN := FALSE:BOOL
+    f.ENO := FALSE:BOOL
+    ok := FALSE:BOOL
+  end";
+        assert!(out.contains(want), "{out}");
+    }
+
+    #[test]
+    fn standard_functions_take_en_and_eno_too() {
+        let out = shape(
+            "PROGRAM P VAR go : BOOL; ok : BOOL; r : INT; END_VAR
+  r := ADD(EN := go, IN1 := r, IN2 := 1, ENO => ok);
+  r := MAX(IN1 := r, IN2 := 3, ENO => ok);
+END_PROGRAM",
+        );
+        assert!(out.contains("    ADD$result := (add:INT r 1:INT)\n    ok := TRUE:BOOL\n  else\n    ADD$result := 0:INT\n    ok := FALSE:BOOL"), "{out}");
+        // Without EN there is nothing to test, and ENO is TRUE.
+        assert!(
+            out.contains("  MAX$result := Max(r, 3:INT):INT\n  ok := TRUE:BOOL\n  r := MAX$result"),
+            "{out}"
+        );
+    }
+
+    #[test]
+    fn operands_before_a_gated_call_are_evaluated_first() {
+        let out = shape(&format!(
+            "{HALF}FUNCTION Bump : INT
+VAR_IN_OUT n : INT; END_VAR
+  n := n + 1;
+  Bump := n;
+END_FUNCTION
+PROGRAM P VAR go : BOOL; n : INT; r : INT; END_VAR
+  r := n + Half(EN := go, x := Bump(n := n));
+END_PROGRAM"
+        ));
+        // `n` is read before the gated call (which writes it) runs.
+        let spill = out
+            .find("P$spill := n")
+            .expect("the left operand is spilled");
+        let call = out.find("if go").expect("the gated call");
+        assert!(spill < call, "{out}");
+        // The inputs are evaluated only when EN is TRUE.
+        assert!(
+            out.contains("  if go\n    P$result := Bump(n <-> n):INT")
+                || out.contains("    Half$result := Half(x := Bump(n <-> n):INT):INT"),
+            "{out}"
+        );
+        assert!(
+            out.contains("  r := (add:INT P$spill Half$result)"),
+            "{out}"
+        );
+    }
+
+    #[test]
+    fn gated_calls_in_loop_and_elsif_conditions_stay_inside() {
+        let out = shape(&format!(
+            "{HALF}PROGRAM P VAR go : BOOL; n : INT; END_VAR
+  WHILE Half(EN := go, x := n) > 0 DO n := n - 1; END_WHILE;
+  IF n = 1 THEN n := 2; ELSIF Half(EN := go, x := n) = 3 THEN n := 4; END_IF;
+END_PROGRAM"
+        ));
+        // The call is evaluated on every iteration, before the test.
+        assert!(
+            out.contains("  loop\n    if go\n      Half$result := Half(x := n):INT"),
+            "{out}"
+        );
+        // ... and for ELSIF only when the IF condition was FALSE.
+        assert!(
+            out.contains("  else\n    if go\n      Half$result := Half(x := n):INT"),
+            "{out}"
+        );
+    }
+
+    #[test]
+    fn a_structured_result_defaults_from_a_variable() {
+        let out = shape(
+            "TYPE Pair : STRUCT a : INT := 5; b : INT; END_STRUCT; END_TYPE
+FUNCTION Mk : Pair
+  Mk.b := 1;
+END_FUNCTION
+PROGRAM P VAR go : BOOL; q : Pair; END_VAR
+  q := Mk(EN := go);
+END_PROGRAM",
+        );
+        assert!(out.contains("    Mk$result := P$default"), "{out}");
     }
 }

@@ -113,6 +113,9 @@ pub(crate) struct Sema<'a> {
     pub global_names: FxHashSet<Symbol>,
     /// The inner index expression of `a[i][j]`, which may index partially.
     pub partial_index_ok: Option<ExprId>,
+    /// Names declared by constructs reported as not supported (an
+    /// INTERFACE...): uses of them are not reported again.
+    pub unsupported_names: FxHashSet<Symbol>,
 }
 
 impl<'a> Sema<'a> {
@@ -154,6 +157,7 @@ impl<'a> Sema<'a> {
             call_edges: Vec::new(),
             partial_index_ok: None,
             global_names: FxHashSet::default(),
+            unsupported_names: ast.unsupported_names.iter().map(|n| n.sym).collect(),
         }
     }
 
@@ -184,7 +188,17 @@ impl<'a> Sema<'a> {
             self.diags
                 .retain(|d| d.is_error() || !(prelude.lo <= d.span.lo && d.span.lo < prelude.hi));
         }
+        let mut implicit_used = FxHashSet::default();
+        for (pi, pou) in self.pous.iter().enumerate() {
+            for (vi, v) in pou.vars.iter().enumerate() {
+                let key = (PouId(pi as u32), VarId(vi as u32));
+                if v.implicit && self.used.contains(&key) {
+                    implicit_used.insert(key);
+                }
+            }
+        }
         Analysis {
+            implicit_used,
             types: self.types,
             pous: self.pous,
             globals: self.globals,
@@ -251,6 +265,30 @@ impl<'a> Sema<'a> {
             }
         }
         best.map(|(_, c)| c.to_string())
+    }
+
+    /// The syntax of a POU.
+    pub fn pou_ast(&self, p: PouId) -> Option<&'a stc_syntax::ast::Pou> {
+        match self.ast.items.get(self.pous.get(p.0 as usize)?.item)? {
+            Item::Pou(pou) => Some(pou),
+            _ => None,
+        }
+    }
+
+    /// Whether the members of a POU are not all known because a part of it
+    /// was reported as not supported: an EXTENDS (inherited members), or a
+    /// skipped ACTION, METHOD or PROPERTY of that name. Unknown names there
+    /// are not reported again.
+    pub fn member_may_be_unsupported(&self, p: PouId, name: Symbol) -> bool {
+        self.pou_ast(p)
+            .is_some_and(|a| a.extends.is_some() || self.is_skipped_member(p, name))
+    }
+
+    /// Whether a POU declared an ACTION, METHOD or PROPERTY of this name,
+    /// skipped after its E0030.
+    pub fn is_skipped_member(&self, p: PouId, name: Symbol) -> bool {
+        self.pou_ast(p)
+            .is_some_and(|a| a.skipped_members.iter().any(|m| m.sym == name))
     }
 
     pub fn set_type(&mut self, e: ExprId, t: TypeId) {

@@ -108,12 +108,43 @@ impl<'a> Sema<'a> {
                         CallInfo {
                             target: CallTarget::CurTime,
                             args: Vec::new(),
+                            en: None,
+                            eno: None,
                         },
                     );
                     return self.types.elem(ElemType::Time);
                 }
                 if let Some(f) = stc_values::lookup(&key) {
                     return self.std_call(e, &f, args, expected, scope, span);
+                }
+                if matches!(key.as_str(), "LOWER_BOUND" | "UPPER_BOUND") {
+                    let upper = key == "UPPER_BOUND";
+                    return self.bound_call(e, upper, &shown, args, scope, span);
+                }
+                if self.reserved_name(*id, "a function") {
+                    self.loose_args(args, scope);
+                    return TypeId::ERROR;
+                }
+                if key == "REF" {
+                    // The 3rd-edition reference operator, like REF_TO.
+                    self.emit(
+                        Diagnostic::new(
+                            Code::E0030,
+                            id.span,
+                            "the reference operator `REF` is not supported yet",
+                        )
+                        .with_label("not supported yet"),
+                    );
+                    self.loose_args(args, scope);
+                    return TypeId::ERROR;
+                }
+                if let Scope::Pou(p) = scope {
+                    if self.member_may_be_unsupported(p, id.sym) {
+                        // An ACTION or METHOD of this POU (`Reset();`), or one
+                        // it may inherit: reported at its declaration.
+                        self.loose_args(args, scope);
+                        return TypeId::ERROR;
+                    }
                 }
                 let mut d =
                     Diagnostic::new(Code::E0103, id.span, format!("unknown function `{shown}`"))
@@ -167,12 +198,14 @@ impl<'a> Sema<'a> {
             }
             self.call_edges.push((p, fb, callee_span));
         }
-        let bound = self.bind_args(e, fb, args, scope, callee_span);
+        let (bound, en, eno) = self.bind_args(e, fb, args, scope, callee_span);
         self.calls.insert(
             e,
             CallInfo {
                 target: CallTarget::FbInstance(fb),
                 args: bound,
+                en,
+                eno,
             },
         );
         if !as_stmt {
@@ -197,18 +230,22 @@ impl<'a> Sema<'a> {
         if let Scope::Pou(p) = scope {
             self.call_edges.push((p, q, span));
         }
-        let bound = self.bind_args(e, q, args, scope, span);
+        let (bound, en, eno) = self.bind_args(e, q, args, scope, span);
         self.calls.insert(
             e,
             CallInfo {
                 target: CallTarget::Function(q),
                 args: bound,
+                en,
+                eno,
             },
         );
         self.pous[q.0 as usize].return_type.unwrap_or(TypeId::VOID)
     }
 
-    /// Binds the arguments of a call to a POU's parameters and checks them.
+    /// Binds the arguments of a call to a POU's parameters and checks them;
+    /// EN and ENO are returned apart (see [`CallInfo::en`]).
+    #[allow(clippy::type_complexity)]
     fn bind_args(
         &mut self,
         _e: ExprId,
@@ -216,10 +253,11 @@ impl<'a> Sema<'a> {
         args: &'a [Arg],
         scope: Scope,
         call_span: Span,
-    ) -> Vec<BoundArg> {
+    ) -> (Vec<BoundArg>, Option<ExprId>, Option<(ExprId, bool)>) {
         self.resolve_pou(q);
         let callee_name = self.sym_name(self.pous[q.0 as usize].name);
         let mut bound: Vec<BoundArg> = Vec::new();
+        let (mut en, mut eno) = (None, None);
         let formal = |a: &Arg| !matches!(a.kind, ArgKind::Positional(_));
         if let Some(first) = args.first() {
             if let Some(odd) = args.iter().find(|a| formal(a) != formal(first)) {
@@ -228,18 +266,24 @@ impl<'a> Sema<'a> {
                         .with_help("name every argument, or none"),
                 );
                 self.loose_args(args, scope);
-                return bound;
+                return (bound, en, eno);
             }
         }
-        let positional: Vec<crate::VarId> = self.pous[q.0 as usize].positional_params().collect();
+        let positional: Vec<crate::VarId> = self.pous[q.0 as usize].positional_params();
+        let (en_var, eno_var) = (self.pous[q.0 as usize].en, self.pous[q.0 as usize].eno);
         let mut given = rustc_hash::FxHashSet::default();
         for (i, a) in args.iter().enumerate() {
             let (v, value, output) = match &a.kind {
                 ArgKind::Positional(value) => {
                     let Some(&v) = positional.get(i) else {
+                        let pou = &self.pous[q.0 as usize];
+                        let outs = positional
+                            .iter()
+                            .filter(|v| pou.var(**v).section == Section::Output)
+                            .count();
+                        let ins = positional.len() - outs;
                         let msg = format!(
-                            "too many arguments: `{callee_name}` takes {} input(s)",
-                            positional.len()
+                            "too many arguments: `{callee_name}` takes {ins} input(s) and {outs} output(s)"
                         );
                         self.emit(
                             Diagnostic::new(Code::E0403, a.span, msg).with_label("extra argument"),
@@ -247,7 +291,11 @@ impl<'a> Sema<'a> {
                         self.loose_args(&args[i..], scope);
                         break;
                     };
-                    (v, *value, None)
+                    // A positional argument after the inputs and in-outs is an
+                    // output (ed2 2.5.1.1), exactly like `name => value`.
+                    let out = (self.pous[q.0 as usize].var(v).section == Section::Output)
+                        .then_some(false);
+                    (v, *value, out)
                 }
                 ArgKind::Input { name, value }
                 | ArgKind::Output {
@@ -266,6 +314,12 @@ impl<'a> Sema<'a> {
                         _ => false,
                     };
                     if !ok {
+                        if found.is_none() && self.member_may_be_unsupported(q, name.sym) {
+                            // May be inherited through an EXTENDS already
+                            // reported.
+                            self.check_expr(*value, Some(TypeId::ERROR), scope);
+                            continue;
+                        }
                         let msg = match found {
                             Some((_, Section::Output)) => format!("`{shown}` is an output of `{callee_name}`: write `{shown} => variable`"),
                             Some((_, Section::Input)) if is_out => format!("`{shown}` is an input of `{callee_name}`: write `{shown} := value`"),
@@ -299,6 +353,14 @@ impl<'a> Sema<'a> {
                     if !given.insert(v) {
                         self.error(Code::E0408, name.span, format!("`{shown}` is given twice"));
                         self.check_expr(*value, Some(TypeId::ERROR), scope);
+                        continue;
+                    }
+                    if Some(v) == en_var {
+                        en = self.en_arg(*value, scope);
+                        continue;
+                    }
+                    if Some(v) == eno_var {
+                        eno = self.eno_arg(*value, negated, scope);
                         continue;
                     }
                     (v, *value, if is_out { Some(negated) } else { None })
@@ -380,7 +442,27 @@ impl<'a> Sema<'a> {
             );
         }
         self.check_eval_order(args, scope, call_span);
-        bound
+        (bound, en, eno)
+    }
+
+    /// `EN := value`: a BOOL.
+    fn en_arg(&mut self, value: ExprId, scope: Scope) -> Option<ExprId> {
+        let bool_ty = self.types.elem(ElemType::Bool);
+        let t = self.check_expr(value, Some(bool_ty), scope);
+        if t != TypeId::ERROR {
+            self.coerce(value, t, bool_ty, Ctx::Arg, "`EN`");
+        }
+        Some(value)
+    }
+
+    /// `ENO => target`: a BOOL variable.
+    fn eno_arg(&mut self, target: ExprId, negated: bool, scope: Scope) -> Option<(ExprId, bool)> {
+        let bool_ty = self.types.elem(ElemType::Bool);
+        let tt = self.check_lvalue(target, scope, Write::Output);
+        if tt != TypeId::ERROR {
+            self.check_output_type(target, bool_ty, tt, "`ENO`");
+        }
+        Some((target, negated))
     }
 
     /// The type of a `=>` target against the output it receives.
@@ -389,11 +471,18 @@ impl<'a> Sema<'a> {
         match self.types.compat(from, to, self.opts.iec2) {
             crate::Compat::Same | crate::Compat::Widen => {}
             crate::Compat::Narrow => {
-                let msg = format!(
-                    "{what} is {} and would be narrowed into {}",
-                    self.tname(from),
-                    self.tname(to)
-                );
+                let (f, t) = (self.tname(from), self.tname(to));
+                let msg = match self.narrowing(from, to) {
+                    crate::expr::Narrowing::Iec2 => format!(
+                        "{what} is {f}, which is not converted implicitly to {t} with --std iec2"
+                    ),
+                    crate::expr::Narrowing::Family => format!(
+                        "{what} is {f}, which does not convert implicitly to {t}: bit strings and numbers convert only explicitly"
+                    ),
+                    crate::expr::Narrowing::Loses => {
+                        format!("{what} is {f} and would be narrowed into {t}")
+                    }
+                };
                 self.emit(Diagnostic::new(Code::E0302, span, msg));
             }
             crate::Compat::Incompatible => {
@@ -432,8 +521,61 @@ impl<'a> Sema<'a> {
             }
         }
         let mut slots: Vec<Option<ExprId>> = Vec::new();
+        // EN and ENO, which every standard function has too (ed2 2.5.1.2).
+        let (mut en, mut eno) = (None, None);
+        for a in args {
+            let (name, slot) = match &a.kind {
+                ArgKind::Input { name, value } if self.interner.key(name.sym) == "EN" => {
+                    (name, Some(*value))
+                }
+                ArgKind::Output {
+                    name,
+                    target,
+                    negated,
+                } if self.interner.key(name.sym) == "ENO" => {
+                    if eno.replace((*target, *negated)).is_none() {
+                        continue;
+                    }
+                    (name, None)
+                }
+                _ => continue,
+            };
+            if slot.is_some() && en.replace(slot).is_none() {
+                continue;
+            }
+            let shown = self.spelled(name.sym, name.span);
+            self.error(Code::E0408, name.span, format!("`{shown}` is given twice"));
+            self.loose_args(args, scope);
+            return TypeId::ERROR;
+        }
+        let en = en.flatten();
         for (i, a) in args.iter().enumerate() {
             let pos = match &a.kind {
+                ArgKind::Input { name, .. } | ArgKind::Output { name, .. }
+                    if matches!(self.interner.key(name.sym), "EN" | "ENO") =>
+                {
+                    if matches!(
+                        (&a.kind, self.interner.key(name.sym)),
+                        (ArgKind::Input { .. }, "EN") | (ArgKind::Output { .. }, "ENO")
+                    ) {
+                        continue;
+                    }
+                    let shown = self.spelled(name.sym, name.span);
+                    let msg = if matches!(a.kind, ArgKind::Input { .. }) {
+                        format!(
+                            "`{shown}` is an output of `{}`: write `{shown} => variable`",
+                            f.name
+                        )
+                    } else {
+                        format!(
+                            "`{shown}` is an input of `{}`: write `{shown} := value`",
+                            f.name
+                        )
+                    };
+                    self.error(Code::E0401, name.span, msg);
+                    self.loose_args(args, scope);
+                    return TypeId::ERROR;
+                }
                 ArgKind::Positional(_) => {
                     if i >= f.params.len() && !f.extensible {
                         let msg =
@@ -521,8 +663,89 @@ impl<'a> Sema<'a> {
             | Intrinsic::Not => self.operator_call(e, f, &values, expected, scope, span),
             _ => self.generic_call(e, f, &values, expected, scope, span),
         };
+        if en.is_some() || eno.is_some() {
+            let en = en.and_then(|v| self.en_arg(v, scope));
+            let eno = eno.and_then(|(t, n)| self.eno_arg(t, n, scope));
+            if let Some(c) = self.calls.get_mut(&e) {
+                c.en = en;
+                c.eno = eno;
+            }
+            if en.is_some() {
+                // Its value depends on EN: not a constant.
+                self.consts.remove(&e);
+            }
+        }
         self.check_eval_order(args, scope, span);
         result
+    }
+
+    /// LOWER_BOUND(ARR, DIM) and UPPER_BOUND(ARR, DIM) (3rd edition): a
+    /// bound of an array, a DINT constant since every array stc supports
+    /// has fixed bounds. Of a variable-length array (already reported as
+    /// not supported) nothing more is said.
+    fn bound_call(
+        &mut self,
+        e: ExprId,
+        upper: bool,
+        name: &str,
+        args: &'a [Arg],
+        scope: Scope,
+        span: Span,
+    ) -> TypeId {
+        let mut slots: [Option<ExprId>; 2] = [None, None];
+        for (i, a) in args.iter().enumerate() {
+            let pos = match &a.kind {
+                ArgKind::Positional(_) if i < 2 => Some(i),
+                ArgKind::Input { name, .. } => match self.interner.key(name.sym) {
+                    "ARR" => Some(0),
+                    "DIM" => Some(1),
+                    _ => None,
+                },
+                _ => None,
+            };
+            match pos {
+                Some(p) if slots[p].is_none() => slots[p] = Some(arg_value(a)),
+                _ => {
+                    let msg = format!("`{name}` takes the inputs ARR (an array) and DIM");
+                    self.emit(Diagnostic::new(Code::E0401, a.span, msg));
+                    self.loose_args(args, scope);
+                    return TypeId::ERROR;
+                }
+            }
+        }
+        let [Some(arr), Some(dim)] = slots else {
+            let msg = format!("`{name}` needs the inputs ARR and DIM");
+            self.emit(Diagnostic::new(Code::E0403, span, msg).with_label("missing argument"));
+            self.loose_args(args, scope);
+            return TypeId::ERROR;
+        };
+        let at = self.check_expr(arr, None, scope);
+        let dint = self.types.elem(ElemType::Dint);
+        let dt = self.check_expr(dim, Some(dint), scope);
+        if at == TypeId::ERROR || dt == TypeId::ERROR {
+            return TypeId::ERROR;
+        }
+        let TypeKind::Array { dims, .. } = self.types.kind(at).clone() else {
+            let msg = format!("`{name}` needs an array, not {}", self.tname(at));
+            self.emit(Diagnostic::new(Code::E0407, self.ast.expr(arr).span, msg));
+            return TypeId::ERROR;
+        };
+        let k = match self.consts.get(&dim) {
+            Some(Value::Int(k)) if self.types.is_integer(dt) => *k,
+            _ => {
+                let msg = format!("the DIM of `{name}` must be an integer constant");
+                self.emit(Diagnostic::new(Code::E0407, self.ast.expr(dim).span, msg));
+                return TypeId::ERROR;
+            }
+        };
+        let Some(&(lo, hi)) = usize::try_from(k - 1).ok().and_then(|i| dims.get(i)) else {
+            let msg = format!("the array has dimensions 1..{}, not {k}", dims.len());
+            self.emit(Diagnostic::new(Code::E0701, self.ast.expr(dim).span, msg));
+            return TypeId::ERROR;
+        };
+        self.consts
+            .insert(e, Value::Int(if upper { hi } else { lo }));
+        dint
     }
 
     /// Binds the type variables of a signature and checks every argument.
@@ -548,9 +771,14 @@ impl<'a> Sema<'a> {
                 }
                 let hint = match pats[i] {
                     TyPat::Elem(t) => Some(self.types.elem(t)),
-                    TyPat::Var(k, fam) => bind[k as usize].or_else(|| {
+                    // A literal that does not fit the type the other inputs
+                    // bound takes its own (`MAX(i, 70000)` is a DINT MAX).
+                    TyPat::Var(k, _) if bind[k as usize].is_some() => {
+                        self.fitting_hint(v, bind[k as usize])
+                    }
+                    TyPat::Var(k, fam) => {
                         expected.filter(|t| self.type_in_family(*t, fam) && ret_var(f) == Some(k))
-                    }),
+                    }
                 };
                 let t = self.check_expr(v, hint, scope);
                 types[i] = t;
@@ -638,6 +866,8 @@ impl<'a> Sema<'a> {
                     ret,
                 },
                 args: bound,
+                en: None,
+                eno: None,
             },
         );
         self.fold_call(e, f.intrinsic, values, &arg_types, ret, span);
@@ -670,12 +900,31 @@ impl<'a> Sema<'a> {
         };
         let mut types = vec![TypeId::ERROR; values.len()];
         let mut common: Option<TypeId> = None;
+        // A typed form (`ADD_INT`, `EQ_STRING`): every input has that type.
+        if let Some(TyPat::Elem(t)) = f.params.first().map(|p| p.ty) {
+            let target = self.types.elem(t);
+            for (i, &v) in values.iter().enumerate() {
+                let vt = self.check_expr(v, Some(target), scope);
+                types[i] = vt;
+                let pname = format!("parameter {} of `{}`", param_name(f, i), f.name);
+                if vt == TypeId::ERROR || !self.coerce(v, vt, target, Ctx::Arg, &pname) {
+                    return TypeId::ERROR;
+                }
+            }
+            common = Some(target);
+        }
         for pass in 0..2 {
             for (i, &v) in values.iter().enumerate() {
-                if (pass == 0) == self.is_flexible(v, scope) {
+                if common.is_some() && types[i] != TypeId::ERROR
+                    || (pass == 0) == self.is_flexible(v, scope)
+                {
                     continue;
                 }
-                let t = self.check_expr(v, common.or(outer), scope);
+                let hint = match common {
+                    Some(_) if pass == 1 => self.fitting_hint(v, common),
+                    _ => common.or(outer),
+                };
+                let t = self.check_expr(v, hint, scope);
                 types[i] = t;
                 if t == TypeId::ERROR {
                     return if cmp {
@@ -766,6 +1015,8 @@ impl<'a> Sema<'a> {
                     ret,
                 },
                 args: bound,
+                en: None,
+                eno: None,
             },
         );
         self.fold_call(e, f.intrinsic, values, &arg_types, ret, span);
@@ -898,6 +1149,12 @@ impl<'a> Sema<'a> {
                     root = *base
                 }
                 ExprKind::Index { base, .. } => root = *base,
+                // `p^ := v` and a target that did not parse: reported
+                // already; the names in it are still resolved.
+                ExprKind::Deref(_) | ExprKind::Error => {
+                    self.check_expr(target, Some(TypeId::ERROR), scope);
+                    return TypeId::ERROR;
+                }
                 _ => break,
             }
         }
@@ -929,7 +1186,9 @@ impl<'a> Sema<'a> {
             _ => {
                 let msg = match how {
                     Write::Assign => "the target of an assignment must be a variable".to_string(),
-                    Write::Output => "the target of `=>` must be a variable".to_string(),
+                    Write::Output => {
+                        "the target of an output (`=>`) must be a variable".to_string()
+                    }
                     Write::InOut => "a VAR_IN_OUT parameter must be given a variable".to_string(),
                 };
                 self.emit(Diagnostic::new(not_var_code, span, msg).with_label("not a variable"));

@@ -96,6 +96,8 @@ impl<'a> Sema<'a> {
                         return_type: None,
                         is_std: self.in_prelude(p.span),
                         var_index: FxHashMap::default(),
+                        en: None,
+                        eno: None,
                     };
                     let mut src = Vec::new();
                     if p.kind == PouKind::Function && p.return_type.is_some() {
@@ -109,6 +111,7 @@ impl<'a> Sema<'a> {
                             retain: false,
                             location: None,
                             edge: None,
+                            implicit: false,
                         });
                         def.var_index.insert(p.name.sym, VarId(0));
                         src.push(None);
@@ -148,10 +151,14 @@ impl<'a> Sema<'a> {
                                         == Some(stc_syntax::ast::Retention::Retain),
                                     location: decl.location.as_ref().map(|l| l.address.clone()),
                                     edge: decl.edge,
+                                    implicit: false,
                                 });
                                 src.push(Some(VarSource { block, decl }));
                             }
                         }
+                    }
+                    if matches!(p.kind, PouKind::Function | PouKind::FunctionBlock) {
+                        self.add_execution_control(&mut def, &mut src);
                     }
                     let n = def.vars.len();
                     self.pous.push(def);
@@ -166,6 +173,42 @@ impl<'a> Sema<'a> {
                     let ids = self.add_globals(block, GlobalOwner::TopLevel);
                     self.top_globals.extend(ids);
                 }
+            }
+        }
+    }
+
+    /// EN and ENO (ed2 2.5.1.2): every function and function block has the
+    /// BOOL input EN and the BOOL output ENO, TRUE at the start of each
+    /// call. A user's own VAR_INPUT EN or VAR_OUTPUT ENO takes their place.
+    fn add_execution_control(&mut self, def: &mut PouDef, src: &mut Vec<Option<VarSource<'a>>>) {
+        let bool_ty = self.types.elem(ElemType::Bool);
+        for (word, section) in [("EN", Section::Input), ("ENO", Section::Output)] {
+            let sym = self.intern(word);
+            let v = match def.var_index.get(&sym) {
+                Some(&v) if def.vars[v.0 as usize].section == section => v,
+                Some(_) => continue,
+                None => {
+                    let v = VarId(def.vars.len() as u32);
+                    def.vars.push(VarDef {
+                        name: sym,
+                        span: def.name_span,
+                        section,
+                        ty: bool_ty,
+                        init: Some(InitValue::Scalar(Value::Bool(true))),
+                        constant: false,
+                        retain: false,
+                        location: None,
+                        edge: None,
+                        implicit: true,
+                    });
+                    def.var_index.insert(sym, v);
+                    src.push(None);
+                    v
+                }
+            };
+            match section {
+                Section::Input => def.en = Some(v),
+                _ => def.eno = Some(v),
             }
         }
     }
@@ -203,6 +246,7 @@ impl<'a> Sema<'a> {
                         retain: block.retention == Some(stc_syntax::ast::Retention::Retain),
                         location: decl.location.as_ref().map(|l| l.address.clone()),
                         edge: None,
+                        implicit: false,
                     },
                     owner,
                 });
@@ -234,6 +278,9 @@ impl<'a> Sema<'a> {
         self.type_decls[i].state = State::InProgress;
         let decl = self.type_decls[i].decl;
         let (ty, mut init) = self.resolve_type_spec(&decl.spec, Scope::Global, Some(decl.name.sym));
+        if self.types.get(ty).name == Some(decl.name.sym) {
+            self.types.set_name_span(ty, decl.name.span);
+        }
         if let Some(i) = &decl.init {
             init = self.init_value(i, ty, Scope::Global);
         }
@@ -255,6 +302,7 @@ impl<'a> Sema<'a> {
             _ => TypeKind::Fb(p),
         };
         let t = self.types.add(kind, Some(pou.name), Some(pou.name_span));
+        self.types.set_name_span(t, pou.name_span);
         self.fb_types.insert(p, t);
         t
     }
@@ -560,6 +608,8 @@ impl<'a> Sema<'a> {
                 }
                 _ => (self.pou_type(p), None),
             },
+            // An INTERFACE or another construct already reported.
+            _ if self.unsupported_names.contains(&id.sym) => (TypeId::ERROR, None),
             _ => {
                 let shown = self.spelled(id.sym, id.span);
                 let mut d =
@@ -765,6 +815,11 @@ impl<'a> Sema<'a> {
             }
             State::Todo => {}
         }
+        if self.pous[pi].vars[vi].implicit {
+            // EN and ENO: BOOL, TRUE, nothing to resolve.
+            self.pou_var_state[pi][vi] = State::Done;
+            return;
+        }
         self.pou_var_state[pi][vi] = State::InProgress;
         let scope = Scope::Pou(p);
         let Some(src) = self.pou_var_src[pi][vi] else {
@@ -818,6 +873,7 @@ impl<'a> Sema<'a> {
                 retain: d.retain,
                 location: None,
                 edge: d.edge,
+                implicit: d.implicit,
             }
         };
         let name = self.spelled(var.name, var.span);

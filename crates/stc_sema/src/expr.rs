@@ -106,6 +106,11 @@ impl<'a> Sema<'a> {
             ExprKind::Call { callee, args } => self.call(e, *callee, args, expected, scope, false),
             ExprKind::Unary { op, operand } => self.unary(e, *op, *operand, expected, scope),
             ExprKind::Binary { op, lhs, rhs } => self.binary(e, *op, *lhs, *rhs, expected, scope),
+            ExprKind::Deref(base) => {
+                // `p^`: reported by the parser; the pointer itself is used.
+                self.check_expr(*base, Some(TypeId::ERROR), scope);
+                TypeId::ERROR
+            }
             ExprKind::Paren(inner) => {
                 let t = self.check_expr(*inner, expected, scope);
                 if let Some(v) = self.consts.get(inner).cloned() {
@@ -285,20 +290,24 @@ impl<'a> Sema<'a> {
                 let v = if *wide {
                     Value::WStr(value.encode_utf16().collect())
                 } else {
+                    // Single-byte text is Windows-1252 (spec/semantics.md).
                     let mut bytes = Vec::with_capacity(value.len());
                     for c in value.chars() {
-                        match u8::try_from(c as u32) {
-                            Ok(b) => bytes.push(b),
-                            Err(_) => {
+                        match stc_syntax::literal::cp1252_encode(c) {
+                            Some(b) => bytes.push(b),
+                            None => {
                                 self.emit(
                                     Diagnostic::new(
                                         Code::E0303,
                                         span,
-                                        format!("`{c}` cannot be stored in a single-byte STRING"),
+                                        format!(
+                                            "`{}` (U+{:04X}) cannot be stored in a single-byte STRING",
+                                            c.escape_debug(),
+                                            c as u32
+                                        ),
                                     )
-                                    .with_help(
-                                        "use a WSTRING (\"...\") for characters beyond U+00FF",
-                                    ),
+                                    .with_note("a STRING holds Windows-1252 characters")
+                                    .with_help("use a WSTRING (\"...\") for other characters"),
                                 );
                                 return TypeId::ERROR;
                             }
@@ -450,7 +459,13 @@ impl<'a> Sema<'a> {
                     self.resolutions.insert(e, Res::Var(v));
                     self.used.insert((p, v));
                     let var = &self.pous[p.0 as usize].vars[v.0 as usize];
-                    if var.constant {
+                    // A CONSTANT input, output or in-out gets its value from
+                    // the caller: it is never folded.
+                    let from_caller = matches!(
+                        var.section,
+                        Section::Input | Section::Output | Section::InOut
+                    );
+                    if var.constant && !from_caller {
                         if let Some(InitValue::Scalar(val)) = &var.init {
                             self.consts.insert(e, val.clone());
                         } else if var.init.is_none() && var.section != Section::External {
@@ -497,6 +512,28 @@ impl<'a> Sema<'a> {
             );
             return TypeId::ERROR;
         }
+        if let Scope::Pou(p) = scope {
+            if self.member_may_be_unsupported(p, id.sym) {
+                // May be inherited through an EXTENDS, or a PROPERTY of this
+                // POU: reported already.
+                return TypeId::ERROR;
+            }
+        }
+        if self.reserved_name(id, "a variable") {
+            return TypeId::ERROR;
+        }
+        if self.interner.key(id.sym) == "NULL" {
+            // The null reference of the 3rd edition, like REF_TO.
+            self.emit(
+                Diagnostic::new(
+                    Code::E0030,
+                    id.span,
+                    "`NULL` references are not supported yet",
+                )
+                .with_label("not supported yet"),
+            );
+            return TypeId::ERROR;
+        }
         let mut d = Diagnostic::new(
             Code::E0101,
             id.span,
@@ -526,6 +563,26 @@ impl<'a> Sema<'a> {
         }
         self.emit(d);
         TypeId::ERROR
+    }
+
+    /// E0022 for a reserved word used as a name that nothing declares (a
+    /// declared one had its E0022 at the declaration and then works as a
+    /// name). Returns whether it reported.
+    pub(crate) fn reserved_name(&mut self, id: Ident, what: &str) -> bool {
+        let key = self.interner.key(id.sym);
+        if !stc_syntax::token::classify_word(key.as_bytes()).is_reserved_word() {
+            return false;
+        }
+        let shown = self.spelled(id.sym, id.span);
+        self.emit(
+            Diagnostic::new(
+                Code::E0022,
+                id.span,
+                format!("`{shown}` is a reserved word and cannot be used as a name"),
+            )
+            .with_label(format!("not {what}")),
+        );
+        true
     }
 
     fn global_ref(&mut self, e: ExprId, g: GlobalId) -> TypeId {
@@ -679,8 +736,32 @@ impl<'a> Sema<'a> {
                 match pou.lookup(member.sym) {
                     Some(v) if matches!(pou.var(v).section, Section::Input | Section::Output) => {
                         let ty = pou.var(v).ty;
+                        if pou.var(v).implicit {
+                            // `inst.ENO`: the variable needs storage.
+                            self.used.insert((p, v));
+                        }
                         self.resolutions.insert(e, Res::FbMember(p, v));
                         ty
+                    }
+                    found
+                        if self.is_skipped_member(p, member.sym)
+                            || found.is_none() && self.member_may_be_unsupported(p, member.sym) =>
+                    {
+                        // An ACTION or METHOD, or a member inherited through
+                        // an EXTENDS: already reported at its declaration.
+                        TypeId::ERROR
+                    }
+                    Some(v) if pou.var(v).section == Section::InOut => {
+                        let msg = format!(
+                            "`{shown}` is an in-out of `{}`, which is not visible from outside",
+                            self.tname(bt)
+                        );
+                        self.emit(
+                            Diagnostic::new(Code::E0104, member.span, msg)
+                                .with_label("VAR_IN_OUT")
+                                .with_note("a VAR_IN_OUT refers to the caller's variable during a call only: use that variable instead"),
+                        );
+                        TypeId::ERROR
                     }
                     found => {
                         let names: Vec<String> = pou
@@ -931,12 +1012,16 @@ impl<'a> Sema<'a> {
             (lt, rt)
         } else if !lf || rf {
             let lt = self.check_expr(l, outer, scope);
-            let hint = self.operand_hint(op, lt).or(outer);
+            let mut hint = self.operand_hint(op, lt).or(outer);
+            if !lf {
+                hint = self.fitting_hint(r, hint);
+            }
             let rt = self.check_expr(r, hint, scope);
             (lt, rt)
         } else {
             let rt = self.check_expr(r, outer, scope);
             let hint = self.operand_hint(op, rt).or(outer);
+            let hint = self.fitting_hint(l, hint);
             let lt = self.check_expr(l, hint, scope);
             (lt, rt)
         };
@@ -955,11 +1040,9 @@ impl<'a> Sema<'a> {
             };
         }
         let Some((result, operand)) = self.binary_types(op, l, lt, r, rt, span) else {
-            return if cmp {
-                self.types.elem(ElemType::Bool)
-            } else {
-                TypeId::ERROR
-            };
+            // Reported: not even a comparison's BOOL result is known, so a
+            // chain `a >= b <= c` gives one diagnostic.
+            return TypeId::ERROR;
         };
         // Folding, and the static division-by-zero check.
         let (ls, rs) = (self.types.scalar(lt), self.types.scalar(rt));
@@ -998,6 +1081,45 @@ impl<'a> Sema<'a> {
             }
         }
         result
+    }
+
+    /// The hint a flexible operand takes from the other operand's type, or
+    /// none when the literal does not fit that type: `a * 60000` with `a`
+    /// an INT is then a DINT multiplication (the literal's own type, and
+    /// the usual implicit widening), not an out-of-range INT literal.
+    pub(crate) fn fitting_hint(&self, e: ExprId, hint: Option<TypeId>) -> Option<TypeId> {
+        let t = hint?;
+        let Some(s) = self.types.numeric(t) else {
+            return hint;
+        };
+        // The literal's own type, when it does not fit the hint and a common
+        // type with it exists (BYTE and DINT have none: then the hint stays
+        // and the literal is out of its range, E0303).
+        let own = match flexible_value(self.ast, e) {
+            Some(FlexValue::Int(v))
+                if stc_values::is_integer(s) || stc_values::is_bit_string(s) =>
+            {
+                let (min, max) = stc_values::int_range(s).unwrap_or((0, 0));
+                if s == ElemType::Bool || (min..=max).contains(&v) {
+                    return hint;
+                }
+                if i32::try_from(v).is_ok() {
+                    ElemType::Dint
+                } else if i64::try_from(v).is_ok() {
+                    ElemType::Lint
+                } else {
+                    ElemType::Ulint
+                }
+            }
+            Some(FlexValue::Real(x)) if s == ElemType::Real && (x as f32).is_infinite() => {
+                ElemType::Lreal
+            }
+            _ => return hint,
+        };
+        match stc_values::common_type(s, own) {
+            Some(_) => None,
+            None => hint,
+        }
     }
 
     /// The type the other operand should take when one operand has type `t`.
@@ -1153,7 +1275,7 @@ impl<'a> Sema<'a> {
     }
 
     /// The common type of two operands, recording the implicit conversions;
-    /// under `--std iec2` mixing types is an error.
+    /// under `--std iec2` mixing types is an error (E0302, once).
     fn unify(&mut self, l: ExprId, a: ElemType, r: ExprId, b: ElemType) -> Option<ElemType> {
         if a == b {
             return Some(a);
@@ -1173,7 +1295,9 @@ impl<'a> Sema<'a> {
                         t.name(),
                         c.name()
                     )));
-                    return None;
+                    // Reported: the operation itself is typed as if the
+                    // conversion were there, so nothing more is said.
+                    return Some(c);
                 }
                 let ct = self.types.elem(c);
                 self.coercions.insert(e, ct);
@@ -1212,16 +1336,16 @@ impl<'a> Sema<'a> {
                 } else {
                     Code::E0302
                 };
-                let msg = if self.opts.iec2
-                    && self
-                        .types
-                        .numeric(from)
-                        .zip(self.types.numeric(to))
-                        .is_some_and(|(a, b)| stc_values::implicit_widening(a, b))
-                {
-                    format!("implicit conversion from {f} to {t} is not allowed with --std iec2")
-                } else {
-                    format!("implicit conversion from {f} to {t} may lose information")
+                let msg = match self.narrowing(from, to) {
+                    Narrowing::Iec2 => format!(
+                        "implicit conversion from {f} to {t} is not allowed with --std iec2"
+                    ),
+                    Narrowing::Family => format!(
+                        "no implicit conversion from {f} to {t}: bit strings and numbers convert only explicitly"
+                    ),
+                    Narrowing::Loses => {
+                        format!("implicit conversion from {f} to {t} may lose information")
+                    }
                 };
                 let mut d = Diagnostic::new(code, span, msg).with_label(format!("this is {f}"));
                 if let (Some(a), Some(b)) = (self.types.numeric(from), self.types.numeric(to)) {
@@ -1257,6 +1381,22 @@ impl<'a> Sema<'a> {
                 self.emit(d);
                 false
             }
+        }
+    }
+
+    /// Why a conversion that [`crate::types::TypeTable::compat`] calls
+    /// narrowing is not implicit.
+    pub(crate) fn narrowing(&self, from: TypeId, to: TypeId) -> Narrowing {
+        let (Some(a), Some(b)) = (self.types.numeric(from), self.types.numeric(to)) else {
+            return Narrowing::Loses;
+        };
+        if stc_values::implicit_widening(a, b) {
+            return Narrowing::Iec2;
+        }
+        if lossless(a, b) {
+            Narrowing::Family
+        } else {
+            Narrowing::Loses
         }
     }
 
@@ -1313,6 +1453,72 @@ impl<'a> Sema<'a> {
     }
 }
 
+/// Why an implicit conversion is refused (E0302), which decides its words.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub(crate) enum Narrowing {
+    /// A widening, refused only because `--std iec2` has none.
+    Iec2,
+    /// Nothing can be lost, but bit strings and numbers never convert
+    /// implicitly (BYTE to INT, UINT to WORD).
+    Family,
+    /// Some values of the source type do not exist in the target.
+    Loses,
+}
+
+/// Whether every value of `a` is exactly a value of `b` (integers and bit
+/// strings by range, and into a real type if its mantissa holds them).
+fn lossless(a: ElemType, b: ElemType) -> bool {
+    let Some((lo, hi)) = stc_values::int_range(a).filter(|_| a != ElemType::Bool) else {
+        return a == ElemType::Real && b == ElemType::Lreal;
+    };
+    if let Some((l2, h2)) = stc_values::int_range(b) {
+        return b != ElemType::Bool && l2 <= lo && hi <= h2;
+    }
+    let mantissa: u32 = match b {
+        ElemType::Real => 24,
+        ElemType::Lreal => 53,
+        _ => return false,
+    };
+    let limit = 1i128 << mantissa;
+    -limit <= lo && hi <= limit
+}
+
+/// The value of a flexible numeric literal, possibly negated or in
+/// parentheses, without checking it.
+enum FlexValue {
+    Int(i128),
+    Real(f64),
+}
+
+fn flexible_value(ast: &stc_syntax::ast::Ast, e: ExprId) -> Option<FlexValue> {
+    match &ast.expr(e).kind {
+        ExprKind::Literal(Literal {
+            value: LitValue::Int { value, negative },
+            prefix: None,
+        }) => {
+            let v = *value as i128;
+            Some(FlexValue::Int(if *negative { -v } else { v }))
+        }
+        ExprKind::Literal(Literal {
+            value: LitValue::Real(x),
+            prefix: None,
+        }) => Some(FlexValue::Real(*x)),
+        ExprKind::Paren(i)
+        | ExprKind::Unary {
+            op: UnaryOp::Plus,
+            operand: i,
+        } => flexible_value(ast, *i),
+        ExprKind::Unary {
+            op: UnaryOp::Neg,
+            operand,
+        } => match flexible_value(ast, *operand)? {
+            FlexValue::Int(v) => Some(FlexValue::Int(-v)),
+            FlexValue::Real(x) => Some(FlexValue::Real(-x)),
+        },
+        _ => None,
+    }
+}
+
 pub(crate) fn bin_op(op: BinaryOp) -> BinOp {
     match op {
         BinaryOp::Or => BinOp::Or,
@@ -1338,7 +1544,7 @@ pub(crate) fn show_value(v: &Value) -> String {
         Value::Bool(b) => if *b { "TRUE" } else { "FALSE" }.into(),
         Value::Int(i) => i.to_string(),
         Value::Real(r) => stc_syntax::literal::format_real(*r),
-        Value::Str(s) => format!("'{}'", String::from_utf8_lossy(s)),
+        Value::Str(s) => format!("'{}'", stc_values::string_text(s)),
         Value::WStr(s) => format!("\"{}\"", String::from_utf16_lossy(s)),
     }
 }

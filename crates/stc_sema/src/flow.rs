@@ -10,6 +10,45 @@ use crate::analyzer::{GlobalName, Scope, Sema};
 use crate::types::TypeKind;
 use crate::{BoundArgKind, PouId, Res, Section, VarId};
 
+/// One access to a variable, for W0101: the variable and the path below it.
+struct Access {
+    var: VarId,
+    path: Vec<Step>,
+    /// The expression, to name the access in messages.
+    expr: ExprId,
+}
+
+#[derive(PartialEq)]
+enum Step {
+    Field(stc_syntax::Symbol),
+    /// Array indices, `None` where not constant.
+    Index(Vec<Option<i128>>),
+    /// A part of a bit string: bits `lo..hi`.
+    Bits(u32, u32),
+}
+
+impl Access {
+    /// Whether two accesses may touch the same memory: the same variable,
+    /// and no step where they certainly part (another member, another
+    /// constant index, other bits). A path and its prefix overlap.
+    fn overlaps(&self, other: &Access) -> bool {
+        self.var == other.var
+            && self
+                .path
+                .iter()
+                .zip(&other.path)
+                .all(|(a, b)| match (a, b) {
+                    (Step::Field(x), Step::Field(y)) => x == y,
+                    (Step::Index(x), Step::Index(y)) => !x
+                        .iter()
+                        .zip(y)
+                        .any(|(p, q)| matches!((p, q), (Some(p), Some(q)) if p != q)),
+                    (Step::Bits(a0, a1), Step::Bits(b0, b1)) => a0 < b1 && b0 < a1,
+                    _ => true,
+                })
+    }
+}
+
 /// What the warnings need of a variable.
 struct Local {
     name: stc_syntax::Symbol,
@@ -23,9 +62,13 @@ impl<'a> Sema<'a> {
         if self.pous[p.0 as usize].is_std {
             return;
         }
+        // A part reported as not supported (an IL or SFC body, a METHOD...)
+        // may use any variable and assign the result: nothing is known.
+        let partial = pou.partial;
         let vars: Vec<(stc_syntax::Symbol, Span, Section)> = self.pous[p.0 as usize]
             .vars
             .iter()
+            .filter(|v| !v.implicit)
             .map(|v| (v.name, v.span, v.section))
             .collect();
         for (i, &(name, span, section)) in vars.iter().enumerate() {
@@ -36,7 +79,10 @@ impl<'a> Sema<'a> {
             };
             let id = VarId(i as u32);
             let shown = self.spelled(v.name, v.span);
-            if matches!(v.section, Section::Var | Section::Temp) && !self.used.contains(&(p, id)) {
+            if matches!(v.section, Section::Var | Section::Temp)
+                && !self.used.contains(&(p, id))
+                && !partial
+            {
                 self.emit(
                     Diagnostic::new(Code::W0104, v.span, format!("unused variable `{shown}`"))
                         .with_label("declared but never used"),
@@ -74,7 +120,10 @@ impl<'a> Sema<'a> {
                 );
             }
         }
-        if pou.kind == PouKind::Function && pou.return_type.is_some() {
+        let result_known = self.pous[p.0 as usize]
+            .return_type
+            .is_some_and(|t| t != crate::TypeId::ERROR);
+        if pou.kind == PouKind::Function && result_known && !partial {
             let mut unassigned_return = false;
             let end = self.assigns_result(&pou.body, p, false, &mut unassigned_return);
             if !end || unassigned_return {
@@ -172,15 +221,17 @@ impl<'a> Sema<'a> {
     }
 
     /// W0101: a variable written by one argument (through `=>` or a
-    /// VAR_IN_OUT of a nested call) and read by another.
+    /// VAR_IN_OUT of a nested call) and read by another. Accesses are
+    /// compared as paths: `s.a` and `s.b` are apart, `s` and `s.a` overlap,
+    /// `a[1]` and `a[2]` are apart, `a[i]` and `a[2]` may overlap.
     pub(crate) fn check_eval_order(&mut self, args: &[Arg], scope: Scope, span: Span) {
         if args.len() < 2 {
             return;
         }
         let mut effects = Vec::with_capacity(args.len());
         for a in args {
-            let mut reads = FxHashSet::default();
-            let mut writes = FxHashSet::default();
+            let mut reads = Vec::new();
+            let mut writes = Vec::new();
             match &a.kind {
                 ArgKind::Positional(v) | ArgKind::Input { value: v, .. } => {
                     self.effects(*v, &mut reads, &mut writes)
@@ -192,13 +243,18 @@ impl<'a> Sema<'a> {
         }
         for (i, (_, w)) in effects.iter().enumerate() {
             for (j, (r, _)) in effects.iter().enumerate() {
-                let Some(&shared) = w.iter().find(|v| r.contains(v)).filter(|_| i != j) else {
+                if i == j {
+                    continue;
+                }
+                let Some(written) = w.iter().find(|w| r.iter().any(|r| w.overlaps(r))) else {
                     continue;
                 };
+                let text = self.sources.slice(self.ast.expr(written.expr).span);
                 let name = match scope {
+                    _ if !text.is_empty() && text.len() <= 40 => format!("`{text}`"),
                     Scope::Pou(p) => format!(
                         "`{}`",
-                        self.sym_name(self.pous[p.0 as usize].var(shared).name)
+                        self.sym_name(self.pous[p.0 as usize].var(written.var).name)
                     ),
                     _ => "a variable".into(),
                 };
@@ -218,20 +274,78 @@ impl<'a> Sema<'a> {
         }
     }
 
-    fn effects(&self, e: ExprId, reads: &mut FxHashSet<VarId>, writes: &mut FxHashSet<VarId>) {
-        match &self.ast.expr(e).kind {
-            ExprKind::Name(_) => {
-                if let Some(Res::Var(v)) = self.resolutions.get(&e) {
-                    reads.insert(*v);
+    /// The variable and the path an lvalue-shaped expression accesses.
+    fn access_of(&self, mut e: ExprId) -> Option<Access> {
+        let start = e;
+        let mut path = Vec::new();
+        loop {
+            match &self.ast.expr(e).kind {
+                ExprKind::Member { base, member } => {
+                    path.push(Step::Field(member.sym));
+                    e = *base;
                 }
+                ExprKind::Index { base, indices } => {
+                    let known = indices
+                        .iter()
+                        .map(|i| match self.consts.get(i) {
+                            Some(stc_values::Value::Int(v)) => Some(*v),
+                            _ => None,
+                        })
+                        .collect();
+                    path.push(Step::Index(known));
+                    e = *base;
+                }
+                ExprKind::PartialAccess { base, size, index } => {
+                    let lo = size.bits() * index;
+                    path.push(Step::Bits(lo, lo + size.bits()));
+                    e = *base;
+                }
+                ExprKind::Paren(i) => e = *i,
+                ExprKind::Name(_) => {
+                    let Some(Res::Var(v)) = self.resolutions.get(&e) else {
+                        return None;
+                    };
+                    path.reverse();
+                    return Some(Access {
+                        var: *v,
+                        path,
+                        expr: start,
+                    });
+                }
+                _ => return None,
             }
-            ExprKind::Member { base, .. } | ExprKind::PartialAccess { base, .. } => {
-                self.effects(*base, reads, writes)
-            }
-            ExprKind::Index { base, indices } => {
-                self.effects(*base, reads, writes);
-                for i in indices.iter() {
-                    self.effects(*i, reads, writes);
+        }
+    }
+
+    fn effects(&self, e: ExprId, reads: &mut Vec<Access>, writes: &mut Vec<Access>) {
+        match &self.ast.expr(e).kind {
+            ExprKind::Name(_)
+            | ExprKind::Member { .. }
+            | ExprKind::Index { .. }
+            | ExprKind::PartialAccess { .. } => {
+                if let Some(a) = self.access_of(e) {
+                    reads.push(a);
+                }
+                // The indices along the path are read too.
+                let mut x = e;
+                loop {
+                    match &self.ast.expr(x).kind {
+                        ExprKind::Member { base, .. } | ExprKind::PartialAccess { base, .. } => {
+                            x = *base
+                        }
+                        ExprKind::Index { base, indices } => {
+                            for i in indices.iter() {
+                                self.effects(*i, reads, writes);
+                            }
+                            x = *base;
+                        }
+                        ExprKind::Paren(i) => x = *i,
+                        ExprKind::Name(_) => break,
+                        _ => {
+                            self.effects(x, reads, writes);
+                            break;
+                        }
+                    }
                 }
             }
             ExprKind::Unary { operand, .. } => self.effects(*operand, reads, writes),
@@ -239,25 +353,25 @@ impl<'a> Sema<'a> {
                 self.effects(*lhs, reads, writes);
                 self.effects(*rhs, reads, writes);
             }
-            ExprKind::Paren(i) => self.effects(*i, reads, writes),
+            ExprKind::Paren(i) | ExprKind::Deref(i) => self.effects(*i, reads, writes),
             ExprKind::Call { args, .. } => {
                 let bound = self.calls.get(&e);
                 for a in args.iter() {
                     match &a.kind {
                         ArgKind::Output { target, .. } => {
-                            if let Some(v) = self.root_var(*target) {
-                                writes.insert(v);
+                            if let Some(w) = self.access_of(*target) {
+                                writes.push(w);
                             }
                         }
                         ArgKind::Positional(v) | ArgKind::Input { value: v, .. } => {
-                            let in_out = bound.is_some_and(|c| {
-                                c.args
-                                    .iter()
-                                    .any(|b| matches!(b.kind, BoundArgKind::InOut(x) if x == *v))
+                            let written = bound.is_some_and(|c| {
+                                c.args.iter().any(|b| {
+                                    matches!(b.kind, BoundArgKind::InOut(x) | BoundArgKind::Output { target: x, .. } if x == *v)
+                                })
                             });
-                            if in_out {
-                                if let Some(r) = self.root_var(*v) {
-                                    writes.insert(r);
+                            if written {
+                                if let Some(w) = self.access_of(*v) {
+                                    writes.push(w);
                                 }
                             }
                             self.effects(*v, reads, writes);

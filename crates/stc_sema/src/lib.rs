@@ -22,6 +22,8 @@ mod expr;
 mod flow;
 pub mod prelude;
 mod stmt;
+#[cfg(test)]
+mod tests;
 pub mod types;
 
 use rustc_hash::FxHashMap;
@@ -77,6 +79,11 @@ pub struct VarDef {
     pub retain: bool,
     pub location: Option<DirectAddress>,
     pub edge: Option<Edge>,
+    /// Declared by the language, not the user: the EN and ENO of a function
+    /// or function block (ed2 2.5.1.2). Implicit variables come after every
+    /// declared one, so a back end that drops them when nothing refers to
+    /// them (see [`Analysis::implicit_used`]) keeps every other `VarId`.
+    pub implicit: bool,
 }
 
 #[derive(Clone, Debug)]
@@ -94,6 +101,13 @@ pub struct PouDef {
     /// Part of the standard library prelude.
     pub is_std: bool,
     pub var_index: FxHashMap<Symbol, VarId>,
+    /// The execution control input EN of a function or function block
+    /// (implicit unless the user declared a VAR_INPUT named EN): a call
+    /// that gives `EN := FALSE` does nothing (see [`CallInfo::en`]).
+    pub en: Option<VarId>,
+    /// The execution control output ENO (implicit unless declared as a
+    /// VAR_OUTPUT): TRUE at the start of every call, assignable in the body.
+    pub eno: Option<VarId>,
 }
 
 impl PouDef {
@@ -105,14 +119,25 @@ impl PouDef {
         self.var_index.get(&name).copied()
     }
 
-    /// Inputs and in-outs in declaration order: the order of positional
-    /// arguments.
-    pub fn positional_params(&self) -> impl Iterator<Item = VarId> + '_ {
-        self.vars
-            .iter()
-            .enumerate()
-            .filter(|(_, v)| matches!(v.section, Section::Input | Section::InOut))
-            .map(|(i, _)| VarId(i as u32))
+    /// The order of positional arguments (ed2 2.5.1.1): the inputs and
+    /// in-outs in declaration order, then the outputs in declaration order;
+    /// EN and ENO are never positional.
+    pub fn positional_params(&self) -> Vec<VarId> {
+        let control = |i: usize| {
+            let v = Some(VarId(i as u32));
+            v == self.en || v == self.eno
+        };
+        let of = |sections: &[Section]| {
+            self.vars
+                .iter()
+                .enumerate()
+                .filter(|(i, v)| sections.contains(&v.section) && !control(*i))
+                .map(|(i, _)| VarId(i as u32))
+                .collect::<Vec<_>>()
+        };
+        let mut out = of(&[Section::Input, Section::InOut]);
+        out.extend(of(&[Section::Output]));
+        out
     }
 }
 
@@ -197,6 +222,15 @@ pub enum Res {
 pub struct CallInfo {
     pub target: CallTarget,
     pub args: Vec<BoundArg>,
+    /// `EN := cond` (ed2 2.5.1.2): when `cond` is FALSE the call does
+    /// nothing: no input is assigned, the body does not run, no output is
+    /// copied, a function's value is its result type's default, and ENO is
+    /// FALSE. Not among `args`.
+    pub en: Option<ExprId>,
+    /// `ENO => target` (`negated` for `NOT ENO => target`): receives the
+    /// callee's ENO after the call (TRUE for a standard function), FALSE
+    /// when EN was FALSE. Not among `args`.
+    pub eno: Option<(ExprId, bool)>,
 }
 
 #[derive(Clone, Debug)]
@@ -245,6 +279,9 @@ pub struct Analysis {
     /// Folded constant values (of the expression's type, before coercion).
     pub consts: FxHashMap<ExprId, Value>,
     pub calls: FxHashMap<ExprId, CallInfo>,
+    /// The implicit variables (EN, ENO) that some code refers to: the POU's
+    /// own body, or `inst.ENO` outside it. The others need no storage.
+    pub implicit_used: rustc_hash::FxHashSet<(PouId, VarId)>,
     pub diagnostics: Vec<Diagnostic>,
 }
 

@@ -49,6 +49,12 @@ impl<'a> Sema<'a> {
         let scope = Scope::Pou(p);
         match &s.kind {
             StmtKind::Empty | StmtKind::Error => {}
+            StmtKind::Unsupported(exprs) => {
+                // Reported by the parser; its names still resolve.
+                for &e in exprs {
+                    self.check_expr(e, Some(TypeId::ERROR), scope);
+                }
+            }
             StmtKind::Assign { target, value } => {
                 let tt = self.check_lvalue(*target, scope, Write::Assign);
                 let vt = self.check_expr(*value, Some(tt), scope);
@@ -102,7 +108,7 @@ impl<'a> Sema<'a> {
             } => {
                 let mut ends = Vec::new();
                 for b in branches {
-                    self.condition(b.cond, scope, "IF");
+                    self.condition(b.cond, scope, "IF", false);
                     self.forget_writes_in(b.cond, p);
                     let at_branch = self.body.known.clone();
                     self.stmts(&b.body, p);
@@ -283,7 +289,8 @@ impl<'a> Sema<'a> {
             }
             StmtKind::While { cond, body } => {
                 self.forget_assigned_in(body, p);
-                self.condition(*cond, scope, "WHILE");
+                let mid_exit = is_literal_bool(self.ast, *cond, true) && leaves_loop(body);
+                self.condition(*cond, scope, "WHILE", mid_exit);
                 self.forget_writes_in(*cond, p);
                 let at_loop = self.body.known.clone();
                 self.body.loop_depth += 1;
@@ -296,7 +303,8 @@ impl<'a> Sema<'a> {
                 self.body.loop_depth += 1;
                 self.stmts(body, p);
                 self.body.loop_depth -= 1;
-                self.condition(*until, scope, "UNTIL");
+                let mid_exit = is_literal_bool(self.ast, *until, false) && leaves_loop(body);
+                self.condition(*until, scope, "UNTIL", mid_exit);
                 self.forget_writes_in(*until, p);
             }
             StmtKind::Exit | StmtKind::Continue => {
@@ -386,7 +394,8 @@ impl<'a> Sema<'a> {
                             _ => None,
                         })
                         .collect();
-                    for t in written {
+                    let eno = call.eno.map(|(t, _)| t);
+                    for t in written.into_iter().chain(eno) {
                         if let Some(v) = self.root_var(t) {
                             self.body.known.remove(&v);
                         }
@@ -537,8 +546,10 @@ impl<'a> Sema<'a> {
         }
     }
 
-    /// A BOOL condition; a constant one is a warning.
-    fn condition(&mut self, e: stc_syntax::ast::ExprId, scope: Scope, what: &str) {
+    /// A BOOL condition; a constant one is a warning, except the loop with
+    /// its exit in the middle (`mid_exit`): `WHILE TRUE DO ... EXIT ...` or
+    /// `REPEAT ... UNTIL FALSE` whose body has an EXIT or RETURN.
+    fn condition(&mut self, e: stc_syntax::ast::ExprId, scope: Scope, what: &str, mid_exit: bool) {
         let bool_ty = self.types.elem(ElemType::Bool);
         let t = self.check_expr(e, Some(bool_ty), scope);
         let span = self.ast.expr(e).span;
@@ -551,6 +562,9 @@ impl<'a> Sema<'a> {
                 Diagnostic::new(Code::E0202, span, msg)
                     .with_label(format!("this is {}", self.tname(t))),
             );
+            return;
+        }
+        if mid_exit {
             return;
         }
         if let Some(Value::Bool(b)) = self.consts.get(&e) {
@@ -587,6 +601,48 @@ impl<'a> Sema<'a> {
             _ => None,
         }
     }
+}
+
+/// Whether an expression is the literal TRUE (or FALSE), in parentheses or
+/// not.
+fn is_literal_bool(ast: &stc_syntax::ast::Ast, e: stc_syntax::ast::ExprId, b: bool) -> bool {
+    match &ast.expr(e).kind {
+        ExprKind::Literal(stc_syntax::ast::Literal {
+            value: stc_syntax::ast::LitValue::Bool(v),
+            prefix: None,
+        }) => *v == b,
+        ExprKind::Paren(i) => is_literal_bool(ast, *i, b),
+        _ => false,
+    }
+}
+
+/// Whether a loop body can leave the loop: a RETURN anywhere, or an EXIT
+/// that is not inside a nested loop.
+fn leaves_loop(body: &[Stmt]) -> bool {
+    fn walk(list: &[Stmt], nested: bool) -> bool {
+        list.iter().any(|s| match &s.kind {
+            StmtKind::Return => true,
+            StmtKind::Exit => !nested,
+            StmtKind::If {
+                branches,
+                else_body,
+            } => {
+                branches.iter().any(|b| walk(&b.body, nested))
+                    || else_body.as_deref().is_some_and(|e| walk(e, nested))
+            }
+            StmtKind::Case {
+                arms, else_body, ..
+            } => {
+                arms.iter().any(|a| walk(&a.body, nested))
+                    || else_body.as_deref().is_some_and(|e| walk(e, nested))
+            }
+            StmtKind::For { body, .. }
+            | StmtKind::While { body, .. }
+            | StmtKind::Repeat { body, .. } => walk(body, true),
+            _ => false,
+        })
+    }
+    walk(body, false)
 }
 
 /// The values known on every one of several paths that join.

@@ -81,6 +81,8 @@ pub struct TypeInfo {
     /// The declared name of a named type.
     pub name: Option<Symbol>,
     pub span: Option<Span>,
+    /// Where the name of a named type is declared (its spelling).
+    pub name_span: Option<Span>,
 }
 
 /// An evaluated initial value.
@@ -133,8 +135,20 @@ impl TypeTable {
 
     pub fn add(&mut self, kind: TypeKind, name: Option<Symbol>, span: Option<Span>) -> TypeId {
         let id = TypeId(self.types.len() as u32);
-        self.types.push(TypeInfo { kind, name, span });
+        self.types.push(TypeInfo {
+            kind,
+            name,
+            span,
+            name_span: None,
+        });
         id
+    }
+
+    /// Records where a type's name is declared (the first declaration wins).
+    pub fn set_name_span(&mut self, t: TypeId, span: Span) {
+        if let Some(info) = self.types.get_mut(t.0 as usize) {
+            info.name_span.get_or_insert(span);
+        }
     }
 
     /// The type of an elementary type name (STRING/WSTRING: the default length).

@@ -35,6 +35,11 @@ pub struct Ident {
 pub struct Ast {
     pub items: Vec<Item>,
     pub exprs: Vec<Expr>,
+    /// Names declared by top-level constructs that were reported as not
+    /// supported (E0030) and skipped: an INTERFACE, a NAMESPACE... A use of
+    /// such a name (a variable of an interface type) is then not reported
+    /// again.
+    pub unsupported_names: Vec<Ident>,
 }
 
 impl Ast {
@@ -101,6 +106,10 @@ pub enum ExprKind {
     },
     /// `( inner )`, kept so the printer can reproduce the source.
     Paren(ExprId),
+    /// `base^`: a pointer or reference dereference, a dialect feature
+    /// already reported as not supported (E0030). The base is kept so the
+    /// variable it names counts as used.
+    Deref(ExprId),
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
@@ -288,6 +297,10 @@ pub enum StmtKind {
     Exit,
     Continue,
     Return,
+    /// A statement of a dialect form that stc does not support (`r REF= v`,
+    /// `x ?= y`), already reported (E0030). Its expressions are kept so the
+    /// names in them are still resolved (and count as used).
+    Unsupported(Vec<ExprId>),
 }
 
 #[derive(Clone, PartialEq, Debug)]
@@ -554,6 +567,19 @@ pub struct Pou {
     pub body: Vec<Stmt>,
     pub span: Span,
     pub pragmas: Vec<Span>,
+    /// The base named by `EXTENDS` (reported as not supported): members
+    /// the POU may inherit from it are unknown, so unknown names in its body
+    /// and unknown members of its instances are not reported.
+    pub extends: Option<Ident>,
+    /// ACTIONs, METHODs and PROPERTYs declared inside the POU, skipped after
+    /// their E0030: a use of one of them (`inst.Reset()`) is not reported
+    /// again.
+    pub skipped_members: Vec<Ident>,
+    /// Some part of the POU (its body as IL or SFC, a method, a `__TRY`
+    /// block...) was skipped after an E0030, so which variables are used and
+    /// whether the result is assigned is not known: the warnings that
+    /// depend on it (W0104, W0106) are not given.
+    pub partial: bool,
 }
 
 #[derive(Clone, PartialEq, Debug)]

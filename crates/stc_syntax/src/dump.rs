@@ -363,6 +363,10 @@ impl Dumper<'_> {
             StmtKind::Exit => self.line(s.span, "Exit"),
             StmtKind::Continue => self.line(s.span, "Continue"),
             StmtKind::Return => self.line(s.span, "Return"),
+            StmtKind::Unsupported(exprs) => {
+                let parts: Vec<String> = exprs.iter().map(|e| self.expr(*e)).collect();
+                self.line(s.span, &format!("Unsupported {}", parts.join(" ")));
+            }
         }
     }
 
@@ -499,6 +503,7 @@ impl Dumper<'_> {
                 format!("({} {} {})", op.symbol(), self.expr(*lhs), self.expr(*rhs))
             }
             ExprKind::Paren(inner) => format!("(paren {})", self.expr(*inner)),
+            ExprKind::Deref(base) => format!("(deref {})", self.expr(*base)),
         }
     }
 }

@@ -62,6 +62,21 @@ struct Lexer<'a> {
     diagnostics: Vec<Diagnostic>,
 }
 
+/// The position of the first occurrence of `needle` in `hay`.
+fn find_bytes(hay: &[u8], needle: &[u8]) -> Option<usize> {
+    hay.windows(needle.len()).position(|w| w == needle)
+}
+
+/// Whether a comment's text is the export marker `marker`, ignoring case and
+/// white space (`@KEY@: DESCRIPTION`).
+fn marker_is(text: &[u8], marker: &[u8]) -> bool {
+    let mut it = text.iter().filter(|b| !b.is_ascii_whitespace());
+    marker
+        .iter()
+        .all(|m| it.next().is_some_and(|b| b.eq_ignore_ascii_case(m)))
+        && it.next().is_none()
+}
+
 fn is_ident_continue(b: u8) -> bool {
     b.is_ascii_alphanumeric() || b == b'_'
 }
@@ -342,6 +357,10 @@ impl<'a> Lexer<'a> {
         true
     }
 
+    /// A `(* *)` comment. Comments nest (spec/semantics.md); one that nesting
+    /// leaves open at the end of the file is read again without nesting, as
+    /// the 2nd edition reads it (W0003 at the inner `(*` that caused it), and
+    /// only one with no `*)` at all is unterminated (E0002).
     fn nested_comment(&mut self) {
         let start = self.pos;
         self.pos += 2;
@@ -356,6 +375,7 @@ impl<'a> Lexer<'a> {
                     depth -= 1;
                     self.pos += 2;
                     if depth == 0 {
+                        self.skip_marked_description(start);
                         self.trivia(TriviaKind::Comment, start);
                         return;
                     }
@@ -363,8 +383,55 @@ impl<'a> Lexer<'a> {
                 _ => self.pos += 1,
             }
         }
+        let body = start + 2;
+        if let Some(close) = find_bytes(&self.src[body..], b"*)") {
+            let end = body + close + 2;
+            // Nesting left the comment open although a `*)` follows, so an
+            // inner `(*` comes before that first `*)`.
+            let inner = find_bytes(&self.src[body..end - 2], b"(*").map_or(start, |i| body + i);
+            self.pos = end;
+            let d = Diagnostic::new(
+                Code::W0003,
+                self.span(inner, inner + 2),
+                "nested comment not closed; read as a non-nesting comment",
+            )
+            .with_label("a nested `(*`: counting it, the comment is never closed")
+            .with_secondary(
+                self.span(start, start + 2),
+                "this comment is read as ending at its first `*)`",
+            )
+            .with_help("add the missing `*)`, or remove the inner `(*`");
+            self.diagnostics.push(d);
+            self.trivia(TriviaKind::Comment, start);
+            return;
+        }
+        self.pos = self.src.len();
         self.error(Code::E0002, start, start + 2, "unterminated comment");
         self.trivia(TriviaKind::Comment, start);
+    }
+
+    /// After the comment `(*@KEY@:DESCRIPTION*)` of the PC WORX / MULTIPROG
+    /// text export (the format OSCAT is distributed in), free text follows,
+    /// outside any comment, up to `(*@KEY@:END_DESCRIPTION*)`: the whole
+    /// region is a comment, as IronPLC reads it. Without the end marker the
+    /// comment is an ordinary one.
+    fn skip_marked_description(&mut self, start: usize) {
+        if !marker_is(&self.src[start + 2..self.pos - 2], b"@KEY@:DESCRIPTION") {
+            return;
+        }
+        let mut at = self.pos;
+        while let Some(i) = find_bytes(&self.src[at..], b"(*") {
+            let open = at + i;
+            let Some(j) = find_bytes(&self.src[open + 2..], b"*)") else {
+                return;
+            };
+            let close = open + 2 + j;
+            if marker_is(&self.src[open + 2..close], b"@KEY@:END_DESCRIPTION") {
+                self.pos = close + 2;
+                return;
+            }
+            at = close + 2;
+        }
     }
 
     fn c_comment(&mut self) {
@@ -389,13 +456,20 @@ impl<'a> Lexer<'a> {
         self.trivia(TriviaKind::Comment, start);
     }
 
+    /// A pragma `{ ... }`, or the MatIEC block `{{ ... }}` of embedded C
+    /// code, which may contain single braces.
     fn pragma(&mut self) {
         let start = self.pos;
-        match self.src[self.pos..].iter().position(|&b| b == b'}') {
-            Some(i) => self.pos += i + 1,
+        let (close, len): (&[u8], usize) = if self.peek(1) == b'{' {
+            (b"}}", 2)
+        } else {
+            (b"}", 1)
+        };
+        match find_bytes(&self.src[self.pos + len..], close) {
+            Some(i) => self.pos += len + i + close.len(),
             None => {
                 self.pos = self.src.len();
-                self.error(Code::E0004, start, start + 1, "unterminated pragma");
+                self.error(Code::E0004, start, start + len, "unterminated pragma");
             }
         }
         self.trivia(TriviaKind::Pragma, start);

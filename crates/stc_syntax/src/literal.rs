@@ -375,6 +375,39 @@ pub fn parse_dt(text: &str) -> Result<i64, LitError> {
 
 /// A string literal's value. Escapes are decoded; problems come back with
 /// their byte range inside `text` (which includes the quotes).
+/// The characters of Windows-1252 bytes 0x80..=0x9F, as the WHATWG encoding
+/// standard (and so every browser and `encoding_rs`) decodes them: the five
+/// bytes Windows-1252 leaves undefined stand for the C1 control of the same
+/// code. Every other byte is the Latin-1 character of the same code.
+const CP1252_HIGH: [char; 32] = [
+    '\u{20AC}', '\u{81}', '\u{201A}', '\u{192}', '\u{201E}', '\u{2026}', '\u{2020}', '\u{2021}',
+    '\u{2C6}', '\u{2030}', '\u{160}', '\u{2039}', '\u{152}', '\u{8D}', '\u{17D}', '\u{8F}',
+    '\u{90}', '\u{2018}', '\u{2019}', '\u{201C}', '\u{201D}', '\u{2022}', '\u{2013}', '\u{2014}',
+    '\u{2DC}', '\u{2122}', '\u{161}', '\u{203A}', '\u{153}', '\u{9D}', '\u{17E}', '\u{178}',
+];
+
+/// The character a byte of single-byte text stands for: STRING values and
+/// files that are not UTF-8 are Windows-1252 (spec/semantics.md).
+pub fn cp1252_decode(b: u8) -> char {
+    match b {
+        0x80..=0x9F => CP1252_HIGH[(b - 0x80) as usize],
+        _ => char::from(b),
+    }
+}
+
+/// The Windows-1252 byte of a character, `None` for a character that has
+/// none (`Ω`, and the C1 controls that Windows-1252 uses for other
+/// characters, such as U+0080).
+pub fn cp1252_encode(c: char) -> Option<u8> {
+    match u32::from(c) {
+        n @ (0..=0x7F | 0xA0..=0xFF) => Some(n as u8),
+        _ => CP1252_HIGH
+            .iter()
+            .position(|&h| h == c)
+            .map(|i| 0x80 + i as u8),
+    }
+}
+
 pub fn decode_string(text: &str, wide: bool) -> (String, Vec<(usize, usize, String)>) {
     let mut out = String::with_capacity(text.len());
     let mut errors = Vec::new();
@@ -412,7 +445,14 @@ pub fn decode_string(text: &str, wide: bool) -> (String, Vec<(usize, usize, Stri
         let hex = text.get(i + 1..(i + 1 + n).min(inner_end)).unwrap_or("");
         if hex.len() == n && hex.bytes().all(|b| b.is_ascii_hexdigit()) {
             let v = u32::from_str_radix(hex, 16).unwrap_or(0);
-            match char::from_u32(v) {
+            // In a STRING `$hh` is a byte, so the character it stands for is
+            // the byte's Windows-1252 character (`$80` is `€`).
+            let ch = if wide {
+                char::from_u32(v)
+            } else {
+                Some(cp1252_decode(v as u8))
+            };
+            match ch {
                 Some(ch) => out.push(ch),
                 None => errors.push((i, i + 1 + n, format!("`${hex}` is not a character"))),
             }
@@ -720,6 +760,22 @@ pub fn format_string(s: &str, wide: bool) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn windows_1252_round_trips_every_byte() {
+        for b in 0..=255u8 {
+            assert_eq!(cp1252_encode(cp1252_decode(b)), Some(b), "{b:#x}");
+        }
+        assert_eq!(cp1252_decode(0x80), '€');
+        assert_eq!(cp1252_decode(0xE9), 'é');
+        assert_eq!(cp1252_encode('€'), Some(0x80));
+        assert_eq!(cp1252_encode('Ÿ'), Some(0x9F));
+        assert_eq!(cp1252_encode('\u{80}'), None);
+        assert_eq!(cp1252_encode('Ω'), None);
+        // `$80` in a STRING is the byte 0x80, the euro sign.
+        assert_eq!(decode_string("'$80$41'", false).0, "€A");
+        assert_eq!(decode_string("\"$0080\"", true).0, "\u{80}");
+    }
 
     #[test]
     fn integers_in_every_base() {

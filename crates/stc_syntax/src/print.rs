@@ -399,6 +399,7 @@ impl Printer<'_> {
             StmtKind::Exit => self.line("EXIT;"),
             StmtKind::Continue => self.line("CONTINUE;"),
             StmtKind::Return => self.line("RETURN;"),
+            StmtKind::Unsupported(_) => self.line("(* unsupported statement *)"),
         }
     }
 
@@ -571,6 +572,7 @@ impl Printer<'_> {
                 (format!("{l} {} {r}", op.symbol()), p)
             }
             ExprKind::Paren(inner) => (format!("({})", self.expr(*inner, 0)), POSTFIX),
+            ExprKind::Deref(base) => (format!("{}^", self.expr(*base, POSTFIX)), POSTFIX),
         };
         if prec < ctx {
             format!("({text})")

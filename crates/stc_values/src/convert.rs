@@ -5,20 +5,23 @@
 //! The rules in one place:
 //! - integers, bit strings and characters between themselves keep the
 //!   low-order bits, as a C cast does; to BOOL is `<> 0`, from BOOL 0/1;
-//! - integer to REAL/LREAL rounds to nearest (ties to even); REAL/LREAL to
-//!   integer rounds to nearest, ties to even, and faults on NaN or out of
-//!   range; TRUNC truncates toward zero with the same faults;
-//! - REAL<->DWORD and LREAL<->LWORD transfer the bit pattern (3rd edition);
+//! - integer and bit-string types to REAL/LREAL round to nearest (ties to
+//!   even), a bit string read as an unsigned integer; REAL/LREAL to an
+//!   integer or bit-string type rounds to nearest, ties to even, and faults
+//!   on NaN or out of range; TRUNC truncates toward zero with the same
+//!   faults;
 //! - TIME counts milliseconds, LTIME nanoseconds; DATE and DT count seconds,
 //!   TOD milliseconds; LDATE, LTOD and LDT nanoseconds;
-//! - to STRING/WSTRING is [`to_text`]; from them is [`parse_value`].
+//! - to STRING/WSTRING is [`to_text`]; from them is [`parse_value`]; a
+//!   STRING's bytes are Windows-1252 characters.
 
-use crate::text::{latin1_text, parse_value, to_text};
+use crate::text::{parse_value, string_text, to_text};
 use crate::types::{
     bits, int_range, is_bit_string, is_char, is_date, is_dt, is_duration, is_int_like, is_integer,
     is_real, is_string, is_tod, wrap,
 };
 use crate::{misuse, Fault, Value};
+use stc_syntax::literal::{cp1252_decode, cp1252_encode};
 use stc_syntax::literal::{NS_PER_D, NS_PER_MS, NS_PER_S};
 use stc_syntax::token::ElemType;
 
@@ -66,18 +69,9 @@ pub fn conversion_allowed(from: ElemType, to: ElemType) -> bool {
     match (cat(from), cat(to)) {
         (Str, _) | (_, Str) => true,
         (Bool | Int, Bool | Int) => true,
-        (Int, Real) | (Real, Int) | (Real, Real) => {
-            // Bit strings and reals only as the 3rd edition's binary
-            // transfers of equal width.
-            !(is_bit_string(from) || is_bit_string(to))
-                || matches!(
-                    (from, to),
-                    (E::Real, E::Dword)
-                        | (E::Dword, E::Real)
-                        | (E::Lreal, E::Lword)
-                        | (E::Lword, E::Lreal)
-                )
-        }
+        // Bit strings convert to and from reals numerically, as integers
+        // (ed2 table 22 defines every pair; real code relies on it).
+        (Int, Real) | (Real, Int) | (Real, Real) => true,
         (Dur, Int | Real | Dur | Tod) | (Int | Real, Dur) => true,
         (Date | Tod | Dt, Int) | (Int, Date | Tod | Dt) => true,
         (Date, Date) | (Tod, Tod) | (Dt, Dt) => true,
@@ -101,25 +95,6 @@ pub fn convert(from: ElemType, to: ElemType, v: &Value) -> Result<Value, Fault> 
         (Real, Real) => {
             let x = real(v)?;
             Ok(Value::Real(round_to(to, x)))
-        }
-        (Real, Int) if is_bit_string(to) => {
-            let x = real(v)?;
-            Ok(Value::Int(if to == E::Dword {
-                (x as f32).to_bits().into()
-            } else {
-                x.to_bits().into()
-            }))
-        }
-        (Int, Real) if is_bit_string(from) => {
-            let n = int(v)?;
-            let x = if from == E::Dword {
-                f64::from(f32::from_bits(
-                    u32::try_from(wrap(E::Dword, n)).unwrap_or(0),
-                ))
-            } else {
-                f64::from_bits(u64::try_from(wrap(E::Lword, n)).unwrap_or(0))
-            };
-            Ok(Value::Real(x))
         }
         (Real, Int) => real_to_int(to, real(v)?, f64::round_ties_even),
         (Int, Real) => Ok(Value::Real(int_to_real(to, int(v)?))),
@@ -365,22 +340,24 @@ fn to_string_value(from: ElemType, to: ElemType, v: &Value) -> Result<Value, Fau
     let wide = to == E::Wstring;
     match (v, wide) {
         (Value::Str(s), false) => Ok(Value::Str(s.clone())),
-        (Value::Str(s), true) => Ok(Value::WStr(s.iter().map(|&b| u16::from(b)).collect())),
+        (Value::Str(s), true) => Ok(Value::wstring(&string_text(s))),
         (Value::WStr(w), true) => Ok(Value::WStr(w.clone())),
-        (Value::WStr(w), false) => w
-            .iter()
-            .map(|&u| u8::try_from(u).map_err(|_| Fault::Conversion))
-            .collect::<Result<Vec<u8>, Fault>>()
-            .map(Value::Str),
+        (Value::WStr(w), false) => {
+            let text = String::from_utf16(w).map_err(|_| Fault::Conversion)?;
+            encode_string(&text)
+        }
         (Value::Int(c), _) if is_char(from) => {
+            let code = u32::try_from(*c).map_err(|_| Fault::Conversion)?;
+            let ch = match from {
+                E::Char => cp1252_decode(u8::try_from(code).map_err(|_| Fault::Conversion)?),
+                _ => char::from_u32(code).ok_or(Fault::Conversion)?,
+            };
             if wide {
-                u16::try_from(*c)
+                u16::try_from(u32::from(ch))
                     .map(|u| Value::WStr(vec![u]))
                     .map_err(|_| Fault::Conversion)
             } else {
-                u8::try_from(*c)
-                    .map(|b| Value::Str(vec![b]))
-                    .map_err(|_| Fault::Conversion)
+                encode_string(&ch.to_string())
             }
         }
         _ => {
@@ -394,9 +371,18 @@ fn to_string_value(from: ElemType, to: ElemType, v: &Value) -> Result<Value, Fau
     }
 }
 
+/// Text as a STRING: its Windows-1252 bytes; a character Windows-1252 has
+/// no byte for is a conversion fault.
+fn encode_string(text: &str) -> Result<Value, Fault> {
+    text.chars()
+        .map(|c| cp1252_encode(c).ok_or(Fault::Conversion))
+        .collect::<Result<Vec<u8>, Fault>>()
+        .map(Value::Str)
+}
+
 fn from_string_value(from: ElemType, to: ElemType, v: &Value) -> Result<Value, Fault> {
     let text = match (from, v) {
-        (E::String, Value::Str(s)) => latin1_text(s),
+        (E::String, Value::Str(s)) => string_text(s),
         (E::Wstring, Value::WStr(w)) => String::from_utf16(w).map_err(|_| Fault::Conversion)?,
         _ => return misuse(),
     };
@@ -560,21 +546,42 @@ mod tests {
     }
 
     #[test]
-    fn real_bit_patterns() {
-        assert_eq!(conv(E::Real, E::Dword, r(1.0)), Ok(i(0x3F80_0000)));
-        assert_eq!(conv(E::Dword, E::Real, i(0x3F80_0000)), Ok(r(1.0)));
+    fn bit_strings_and_reals_convert_numerically() {
+        for (a, b) in [
+            (E::Byte, E::Real),
+            (E::Word, E::Lreal),
+            (E::Dword, E::Real),
+            (E::Lword, E::Lreal),
+            (E::Real, E::Byte),
+            (E::Lreal, E::Lword),
+        ] {
+            assert!(conversion_allowed(a, b), "{a:?} {b:?}");
+        }
+        // The bit string read as an unsigned integer.
+        assert_eq!(conv(E::Byte, E::Real, i(255)), Ok(r(255.0)));
+        assert_eq!(conv(E::Word, E::Real, i(0xFFFF)), Ok(r(65535.0)));
         assert_eq!(
-            conv(E::Lreal, E::Lword, r(-2.0)),
-            Ok(i(0xC000_0000_0000_0000))
+            conv(E::Dword, E::Real, i(0x3F80_0000)),
+            Ok(r(1_065_353_216.0))
         );
         assert_eq!(
-            conv(E::Lword, E::Lreal, i(0x3FF0_0000_0000_0000)),
-            Ok(r(1.0))
+            conv(E::Dword, E::Real, i(0xFFFF_FFFF)),
+            Ok(r(4_294_967_296.0))
         );
-        assert!(!conversion_allowed(E::Real, E::Word));
-        assert!(!conversion_allowed(E::Lreal, E::Dword));
-        assert!(!conversion_allowed(E::Byte, E::Real));
-        assert_eq!(conv(E::Real, E::Word, r(1.0)), Err(Fault::Conversion));
+        assert_eq!(
+            conv(E::Lword, E::Lreal, i(u64::MAX as i128)),
+            Ok(r(18_446_744_073_709_551_616.0))
+        );
+        // Rounded to nearest, ties to even; out of the unsigned range faults.
+        assert_eq!(conv(E::Real, E::Word, r(1.0)), Ok(i(1)));
+        assert_eq!(conv(E::Real, E::Byte, r(2.5)), Ok(i(2)));
+        assert_eq!(conv(E::Lreal, E::Byte, r(3.5)), Ok(i(4)));
+        assert_eq!(conv(E::Lreal, E::Byte, r(255.4)), Ok(i(255)));
+        assert_eq!(conv(E::Lreal, E::Byte, r(255.5)), Err(Fault::Conversion));
+        assert_eq!(conv(E::Real, E::Dword, r(-1.0)), Err(Fault::Conversion));
+        assert_eq!(conv(E::Lreal, E::Lword, r(-0.4)), Ok(i(0)));
+        assert_eq!(conv(E::Real, E::Word, r(f64::NAN)), Err(Fault::Conversion));
+        assert_eq!(conv(E::Real, E::Dword, r(1.0)), Ok(i(1)));
     }
 
     #[test]
@@ -676,12 +683,34 @@ mod tests {
             conv(E::Wstring, E::String, Value::WStr(vec![0xE9, 65])),
             Ok(Value::Str(vec![0xE9, 65]))
         );
+        // STRING is Windows-1252: byte 0x80 is the euro sign.
+        assert_eq!(
+            conv(E::String, E::Wstring, Value::Str(vec![0x80, 0x9F])),
+            Ok(Value::WStr(vec![0x20AC, 0x178]))
+        );
         assert_eq!(
             conv(E::Wstring, E::String, Value::WStr(vec![0x20AC])),
+            Ok(Value::Str(vec![0x80]))
+        );
+        assert_eq!(
+            conv(E::Wstring, E::String, Value::WStr(vec![0x3A9])),
+            Err(Fault::Conversion)
+        );
+        assert_eq!(
+            conv(E::Wstring, E::String, Value::WStr(vec![0x80])),
             Err(Fault::Conversion)
         );
         assert_eq!(conv(E::Char, E::String, i(65)), Ok(s("A")));
-        assert_eq!(conv(E::Wchar, E::String, i(0x20AC)), Err(Fault::Conversion));
+        assert_eq!(conv(E::Char, E::Wstring, i(0x80)), Ok(Value::wstring("€")));
+        assert_eq!(
+            conv(E::Wchar, E::String, i(0x20AC)),
+            Ok(Value::Str(vec![0x80]))
+        );
+        assert_eq!(conv(E::Wchar, E::String, i(0x3A9)), Err(Fault::Conversion));
+        assert_eq!(
+            conv(E::String, E::Wchar, Value::Str(vec![0x80])),
+            Ok(i(0x20AC))
+        );
         assert_eq!(
             conv(E::Wchar, E::Wstring, i(0x20AC)),
             Ok(Value::WStr(vec![0x20AC]))
@@ -690,6 +719,10 @@ mod tests {
         assert_eq!(conv(E::String, E::Char, s("")), Ok(i(0)));
         assert_eq!(
             conv(E::Wstring, E::Char, Value::WStr(vec![0x20AC])),
+            Ok(i(0x80))
+        );
+        assert_eq!(
+            conv(E::Wstring, E::Char, Value::WStr(vec![0x3A9])),
             Err(Fault::Conversion)
         );
         assert_eq!(conv(E::String, E::String, s("x")), Ok(s("x")));

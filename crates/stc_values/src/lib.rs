@@ -34,7 +34,7 @@ pub use call::{call, split, split_lookup};
 pub use convert::{bcd_to_int, conversion_allowed, convert, int_to_bcd, trunc};
 pub use ops::{binary, unary};
 pub use stdfn::{all, lookup, Intrinsic, Param, StdFunction, TyPat};
-pub use text::{parse_value, to_text, truncate};
+pub use text::{parse_value, string_text, to_text, truncate};
 pub use types::{
     bits, common_type, default_value, implicit_widening, in_family, int_range, is_bit_string,
     is_integer, is_real, is_signed, is_time_like, wrap,
@@ -53,7 +53,7 @@ pub use types::{
 /// | DT, LDT | `Int` | nanoseconds since 1970-01-01T00:00:00, i64 range |
 /// | REAL | `Real` | an f64 holding an exact f32 value |
 /// | LREAL | `Real` | |
-/// | STRING | `Str` | bytes, Latin-1 |
+/// | STRING | `Str` | bytes, Windows-1252 |
 /// | WSTRING | `WStr` | UTF-16 code units |
 #[derive(Clone, Debug, PartialEq)]
 pub enum Value {
@@ -90,12 +90,13 @@ impl Value {
         }
     }
 
-    /// A STRING value from Rust text (characters above U+00FF become `?`,
-    /// which cannot happen for the ASCII texts this crate produces).
+    /// A STRING value from Rust text, in Windows-1252 (characters it cannot
+    /// encode become `?`, which cannot happen for the ASCII texts this crate
+    /// produces).
     pub fn string(s: &str) -> Value {
         Value::Str(
             s.chars()
-                .map(|c| u8::try_from(u32::from(c)).unwrap_or(b'?'))
+                .map(|c| stc_syntax::literal::cp1252_encode(c).unwrap_or(b'?'))
                 .collect(),
         )
     }

@@ -13,7 +13,9 @@
 //! Besides the fixed table ([`all`]), [`lookup`] knows every generated name:
 //! `A_TO_B` for each pair [`conversion_allowed`] accepts, the 3rd-edition
 //! generic `TO_B`, `TRUNC` and `A_TRUNC_B`, `BCD_TO_B` / `A_TO_BCD` (2nd
-//! edition) and `A_BCD_TO_B` / `A_TO_BCD_B` (3rd edition). Generic forms
+//! edition) and `A_BCD_TO_B` / `A_TO_BCD_B` (3rd edition), and the typed
+//! forms of the overloaded functions (2nd edition 2.5.1.4, table 21:
+//! `ADD_INT`, `LIMIT_REAL`, `SHL_BYTE`, `EQ_STRING`), see [`typed_forms`]. Generic forms
 //! cannot know their argument type: their intrinsic carries a placeholder
 //! (see [`Intrinsic::resolve`]); [`crate::call()`] always works from the
 //! concrete argument and result types it is given.
@@ -594,6 +596,11 @@ fn table() -> &'static Table {
     TABLE.get_or_init(|| {
         let fixed = fixed_table();
         let mut by_name: HashMap<&'static str, StdFunction> = HashMap::new();
+        // Typed forms first: a generated conversion or a fixed name of the
+        // same spelling (`ADD_TIME`, `CONCAT_DATE`) is the one that counts.
+        for t in typed_forms(&fixed) {
+            by_name.insert(t.name, t);
+        }
         for g in generated() {
             by_name.insert(g.name, g);
         }
@@ -608,6 +615,54 @@ fn table() -> &'static Table {
 /// thousand names) and built a single time, like a static table.
 fn name(s: String) -> &'static str {
     Box::leak(s.into_boxed_str())
+}
+
+/// The typed forms of the overloaded functions: `FUNC_TYPE` is `FUNC` with
+/// one type variable bound to the elementary type `TYPE`. The variable is
+/// the result's (`SHL_BYTE` binds the bit string, not the shift count;
+/// `MUX_INT` the selected values, not the selector) or, for a result of a
+/// fixed type, the one variable all inputs share (`EQ_STRING`, `GT_INT`).
+/// A type outside the variable's family gives no name (`SUB_DATE`,
+/// `SQRT_INT`). Every spelling of the type names counts (`MAX_TOD`,
+/// `MAX_TIME_OF_DAY`).
+fn typed_forms(fixed: &[StdFunction]) -> Vec<StdFunction> {
+    let mut out = Vec::new();
+    for f in fixed {
+        let var = match f.ret {
+            TyPat::Var(k, g) => Some((k, g)),
+            TyPat::Elem(_) => match f.params.first().map(|p| p.ty) {
+                Some(first @ TyPat::Var(k, g)) if f.params.iter().all(|p| p.ty == first) => {
+                    Some((k, g))
+                }
+                _ => None,
+            },
+        };
+        let Some((k, fam)) = var else { continue };
+        for &(type_name, t) in ElemType::SPELLINGS {
+            if !crate::types::in_family(fam, t) {
+                continue;
+            }
+            let bind = |p: TyPat| match p {
+                TyPat::Var(j, _) if j == k => TyPat::Elem(t),
+                other => other,
+            };
+            out.push(StdFunction {
+                name: name(format!("{}_{type_name}", f.name)),
+                intrinsic: f.intrinsic,
+                params: f
+                    .params
+                    .iter()
+                    .map(|p| Param {
+                        name: p.name,
+                        ty: bind(p.ty),
+                    })
+                    .collect(),
+                ret: bind(f.ret),
+                extensible: f.extensible,
+            });
+        }
+    }
+    out
 }
 
 fn conv_entry(n: String, intrinsic: Intrinsic, input: TyPat, ret: TyPat) -> StdFunction {
@@ -867,7 +922,14 @@ mod tests {
             }
         );
         assert_eq!(sig("DWORD_TO_REAL").ret, el(E::Real));
-        assert!(lookup("WORD_TO_REAL").is_none());
+        assert_eq!(
+            sig("WORD_TO_REAL").intrinsic,
+            I::Convert {
+                from: E::Word,
+                to: E::Real
+            }
+        );
+        assert_eq!(sig("REAL_TO_BYTE").ret, el(E::Byte));
         assert!(lookup("BOOL_TO_REAL").is_none());
         assert!(lookup("INT_TO_INT").is_none());
         assert!(lookup("DATE_TO_TOD").is_none());
@@ -920,6 +982,50 @@ mod tests {
         assert!(lookup("SPLIT_DATE").is_none());
         assert!(lookup("NOPE").is_none());
         assert!(lookup("").is_none());
+    }
+
+    #[test]
+    fn typed_forms_bind_one_type_variable() {
+        let add = sig("ADD_INT");
+        assert_eq!(add.intrinsic, I::Add);
+        assert!(add.params.iter().all(|p| p.ty == el(E::Int)));
+        assert_eq!(add.ret, el(E::Int));
+        assert!(add.extensible);
+        let limit = sig("limit_real");
+        assert_eq!(names(&limit), ["MN", "IN", "MX"]);
+        assert!(limit.params.iter().all(|p| p.ty == el(E::Real)));
+        // SHL_BYTE: the bit string, not the count.
+        let shl = sig("SHL_BYTE");
+        assert_eq!(
+            (shl.params[0].ty, shl.params[1].ty),
+            (el(E::Byte), v(1, G::AnyInt))
+        );
+        assert_eq!(shl.ret, el(E::Byte));
+        // MUX_INT: the selected values, not the selector.
+        let mux = sig("MUX_INT");
+        assert_eq!(mux.params[0].ty, v(0, G::AnyInt));
+        assert_eq!(mux.params[1].ty, el(E::Int));
+        assert_eq!(mux.ret, el(E::Int));
+        let sel = sig("SEL_REAL");
+        assert_eq!(sel.params[0].ty, el(E::Bool));
+        assert_eq!(sel.ret, el(E::Real));
+        // A fixed result: the inputs' shared variable.
+        let eq = sig("EQ_STRING");
+        assert!(eq.params.iter().all(|p| p.ty == el(E::String)));
+        assert_eq!(eq.ret, el(E::Bool));
+        assert_eq!(sig("MAX_TIME_OF_DAY").ret, el(E::Tod));
+        assert_eq!(sig("MAX_TOD").ret, el(E::Tod));
+        assert_eq!(sig("CONCAT_WSTRING").ret, el(E::Wstring));
+        assert_eq!(sig("EXPT_REAL").params[1].ty, v(1, G::AnyNum));
+        // Outside the family, or no variable to bind: no such name.
+        assert!(lookup("SQRT_INT").is_none());
+        assert!(lookup("SUB_DATE").is_none());
+        assert!(lookup("AND_REAL").is_none());
+        assert!(lookup("MUL_TIME_INT").is_none());
+        // Fixed and conversion names keep their meaning.
+        assert_eq!(sig("ADD_TIME").intrinsic, I::AddTime);
+        assert_eq!(sig("CONCAT_DATE").intrinsic, I::ConcatDate);
+        assert_eq!(sig("MUL_TIME").intrinsic, I::MulTime);
     }
 
     #[test]

@@ -10,8 +10,8 @@
 use crate::types::{int_range, is_date, is_dt, is_duration, is_int_like, is_real, is_tod};
 use crate::{misuse, Fault, Value};
 use stc_syntax::literal::{
-    format_date, format_dt, format_duration, format_real, format_tod, parse_based_int, parse_date,
-    parse_dt, parse_duration, parse_int, parse_tod,
+    cp1252_decode, cp1252_encode, format_date, format_dt, format_duration, format_real, format_tod,
+    parse_based_int, parse_date, parse_dt, parse_duration, parse_int, parse_tod,
 };
 use stc_syntax::token::{ElemType, TokenKind};
 
@@ -32,11 +32,15 @@ pub fn to_text(t: ElemType, v: &Value) -> String {
             t == E::Ltod,
         ),
         (E::Dt | E::Ldt, Value::Int(ns)) => format_dt(clamp_i64(*ns), t == E::Ldt),
-        (E::Char | E::Wchar, Value::Int(c)) => char_text(*c).to_string(),
+        (E::Char, Value::Int(c)) => match u8::try_from(*c) {
+            Ok(b) => cp1252_decode(b).to_string(),
+            Err(_) => char::REPLACEMENT_CHARACTER.to_string(),
+        },
+        (E::Wchar, Value::Int(c)) => char_text(*c).to_string(),
         (E::Bool, Value::Int(i)) => bool_text(*i != 0).to_string(),
         (_, Value::Bool(b)) => bool_text(*b).to_string(),
         (_, Value::Int(i)) => i.to_string(),
-        (_, Value::Str(s)) => latin1_text(s),
+        (_, Value::Str(s)) => string_text(s),
         (_, Value::WStr(w)) => String::from_utf16_lossy(w),
     }
 }
@@ -60,8 +64,11 @@ fn char_text(c: i128) -> char {
         .unwrap_or(char::REPLACEMENT_CHARACTER)
 }
 
-pub(crate) fn latin1_text(s: &[u8]) -> String {
-    s.iter().map(|&b| char::from(b)).collect()
+/// The text of a STRING's bytes, read as Windows-1252 (spec/semantics.md:
+/// single-byte text is Windows-1252, a superset of Latin-1's printable
+/// characters).
+pub fn string_text(s: &[u8]) -> String {
+    s.iter().map(|&b| cp1252_decode(b)).collect()
 }
 
 /// REAL values print as the shortest text that reads back to the same f32,
@@ -110,24 +117,29 @@ pub fn truncate(v: &Value, len: u32) -> Value {
 /// `2024-01-31`). Every form may carry its type prefix (`INT#-5`,
 /// `BOOL#TRUE`, `LREAL#1.5`); it must name `to` (for time and date types
 /// the long and short prefixes are both accepted). A STRING or WSTRING
-/// target takes the text itself (characters above U+00FF fault for
-/// STRING); a CHAR or WCHAR target takes its first character (NUL for an
-/// empty text). Anything else, and any value outside `to`'s range, is a
-/// conversion fault.
+/// target takes the text itself (for STRING in Windows-1252: a character
+/// it cannot encode faults); a CHAR or WCHAR target takes its first
+/// character (NUL for an empty text). Anything else, and any value outside
+/// `to`'s range, is a conversion fault.
 pub fn parse_value(to: ElemType, text: &str) -> Result<Value, Fault> {
     match to {
         E::String => {
             return text
                 .chars()
-                .map(|c| u8::try_from(u32::from(c)).map_err(|_| Fault::Conversion))
+                .map(|c| cp1252_encode(c).ok_or(Fault::Conversion))
                 .collect::<Result<Vec<u8>, Fault>>()
                 .map(Value::Str)
         }
         E::Wstring => return Ok(Value::wstring(text)),
-        E::Char | E::Wchar => {
+        E::Char => {
+            let c = text.chars().next().unwrap_or('\0');
+            return cp1252_encode(c)
+                .map(|b| Value::Int(b.into()))
+                .ok_or(Fault::Conversion);
+        }
+        E::Wchar => {
             let c = text.chars().next().map_or(0, u32::from);
-            let max = if to == E::Char { 0xFF } else { 0xFFFF };
-            if c > max {
+            if c > 0xFFFF {
                 return Err(Fault::Conversion);
             }
             return Ok(Value::Int(c.into()));
@@ -481,10 +493,14 @@ mod tests {
         assert_eq!(ok(E::String, " a b "), Value::string(" a b "));
         assert_eq!(ok(E::Wstring, "x"), Value::wstring("x"));
         assert_eq!(ok(E::String, ""), Value::string(""));
-        bad(E::String, "\u{20ac}");
+        assert_eq!(ok(E::String, "\u{20ac}"), Value::Str(vec![0x80]));
+        bad(E::String, "\u{3a9}");
         assert_eq!(ok(E::Char, "AB"), Value::Int(65));
         assert_eq!(ok(E::Char, ""), Value::Int(0));
         assert_eq!(ok(E::Wchar, "\u{20ac}"), Value::Int(0x20ac));
-        bad(E::Char, "\u{20ac}");
+        assert_eq!(ok(E::Char, "\u{20ac}"), Value::Int(0x80));
+        bad(E::Char, "\u{3a9}");
+        assert_eq!(text(E::Char, Value::Int(0x80)), "€");
+        assert_eq!(text(E::String, Value::Str(vec![0x80, 0xE9])), "€é");
     }
 }

@@ -62,11 +62,15 @@ pub fn fault_of_code(c: u32) -> FaultKind {
     }
 }
 
-/// Where a value is: at an operand, or behind a pointer held in a temporary.
+/// Where a value is: at an operand, behind a pointer held in a temporary,
+/// or in an element of an array at a fixed place (`base` is the array
+/// moved by the offset inside the element), not yet computed: a scalar
+/// there is read and written by one `ldelem`/`stelem`.
 #[derive(Clone, Copy, Debug)]
 enum Loc {
     At(Op),
     Ptr { ptr: Op, off: u32 },
+    Elem { base: Op, idx: Op, desc: u32 },
 }
 
 /// A place: its location, and for `x.%X3` the part selected.
@@ -106,6 +110,8 @@ pub struct Compiler<'a> {
     consts: Vec<u8>,
     const_map: FxHashMap<Vec<u8>, u32>,
     calls: Vec<StdCall>,
+    elems: Vec<ElemDesc>,
+    elem_map: FxHashMap<ElemDesc, u32>,
     pous: Vec<PouCode>,
     /// Per POU: the frame layout (set when the POU is compiled).
     frames: Vec<Option<FrameInfo>>,
@@ -139,6 +145,8 @@ pub fn compile(m: &Module) -> Result<Image, CompileError> {
         consts: Vec::new(),
         const_map: FxHashMap::default(),
         calls: Vec::new(),
+        elems: Vec::new(),
+        elem_map: FxHashMap::default(),
         pous: Vec::new(),
         frames: vec![None; m.pous.len()],
         cur: PouId(0),
@@ -159,7 +167,7 @@ impl<'a> Compiler<'a> {
                 AstPouKind::Program => PouKind::Program,
             };
             self.pous.push(PouCode {
-                name: self.m.name(p.name).to_string(),
+                name: self.m.spelled(p.name, p.name_span).to_string(),
                 kind,
                 entry: 0,
                 instance_size: self.l.pous[i].instance.size,
@@ -202,7 +210,7 @@ impl<'a> Compiler<'a> {
                 })
                 .map(|c| c as u32);
             globals.push(GlobalDesc {
-                name: self.m.name(g.name).to_string(),
+                name: self.m.spelled(g.name, g.span).to_string(),
                 ty,
                 offset: off,
                 config,
@@ -286,6 +294,7 @@ impl<'a> Compiler<'a> {
             programs,
             io: self.io,
             calls: self.calls,
+            elems: self.elems,
             lines: self.lines,
             files: self.files,
         })
@@ -299,20 +308,14 @@ impl<'a> Compiler<'a> {
         }
         let desc = match self.m.types.kind(t).clone() {
             TypeKind::Elem(e) => TypeDesc::Scalar(e),
-            TypeKind::Subrange { base, .. } => TypeDesc::Scalar(base),
+            TypeKind::Subrange { base, lo, hi } => TypeDesc::Subrange { base, lo, hi },
             TypeKind::String { wide, len } => TypeDesc::String { wide, cap: len },
             TypeKind::Enum { values, base } => TypeDesc::Enum {
-                name: self
-                    .m
-                    .types
-                    .get(t)
-                    .name
-                    .map(|n| self.m.name(n).to_string())
-                    .unwrap_or_default(),
+                name: self.m.type_name(t).unwrap_or_default().to_string(),
                 base,
                 values: values
                     .iter()
-                    .map(|v| (self.m.name(v.name).to_string(), v.value))
+                    .map(|v| (self.m.spelled(v.name, v.span).to_string(), v.value))
                     .collect(),
             },
             TypeKind::Array { dims, elem } => {
@@ -328,13 +331,13 @@ impl<'a> Compiler<'a> {
                 for (i, f) in fields.iter().enumerate() {
                     let ft = self.ty_ref(f.ty);
                     fs.push(FieldDesc {
-                        name: self.m.name(f.name).to_string(),
+                        name: self.m.spelled(f.name, f.span).to_string(),
                         ty: ft,
                         offset: self.l.field_offset(t, i as u32),
                     });
                 }
                 TypeDesc::Struct {
-                    name: self.m.types.get(t).name.map(|n| self.m.name(n).to_string()),
+                    name: self.m.type_name(t).map(str::to_string),
                     fields: fs,
                 }
             }
@@ -698,7 +701,7 @@ impl<'a> Compiler<'a> {
             };
             let in_frame = self.l.pous[p.0 as usize].in_frame[i];
             vars.push(VarDesc {
-                name: self.m.name(v.name).to_string(),
+                name: self.m.spelled(v.name, v.span).to_string(),
                 ty,
                 kind,
                 offset: if in_frame {
@@ -708,6 +711,8 @@ impl<'a> Compiler<'a> {
                 },
                 in_frame,
                 is_ref: v.storage == Storage::Ref,
+                location: v.location.clone(),
+                constant: v.constant,
             });
         }
         self.pous[p.0 as usize].vars = vars;
@@ -760,18 +765,15 @@ impl<'a> Compiler<'a> {
         self.cur = p;
         self.frame = Frame::default();
         let function = pou.kind == AstPouKind::Function;
-        // Frame variables: a function's inputs first (the caller writes them),
-        // then the rest; then temporaries.
+        // Frame variables: a function's inputs and in-outs first (the caller
+        // writes them, the frame template starts after them), then the rest;
+        // then temporaries.
+        let by_caller =
+            |v: &stc_ir::Var| function && matches!(v.section, Section::Input | Section::InOut);
         let mut order: Vec<usize> = (0..pou.vars.len())
             .filter(|&i| self.l.pous[p.0 as usize].in_frame[i])
             .collect();
-        order.sort_by_key(|&i| {
-            if function && pou.vars[i].section == Section::Input {
-                0
-            } else {
-                1
-            }
-        });
+        order.sort_by_key(|&i| if by_caller(&pou.vars[i]) { 0 } else { 1 });
         let mut init_at = 0;
         for &i in &order {
             let v = &pou.vars[i];
@@ -783,7 +785,7 @@ impl<'a> Compiler<'a> {
             let off = align_up(self.frame.top, lay.align);
             self.frame.var_off.insert(i as u32, off);
             self.frame.top = off + lay.size;
-            if function && v.section == Section::Input {
+            if by_caller(v) {
                 init_at = self.frame.top;
             }
         }
@@ -861,9 +863,14 @@ impl<'a> Compiler<'a> {
         Op::abs(self.data.len() as u32 + off)
     }
 
-    fn const_i64(&mut self, v: i64) -> Op {
-        let off = self.const_bytes(&v.to_le_bytes(), 8);
-        Op::abs(self.data.len() as u32 + off)
+    fn elem_desc(&mut self, d: ElemDesc) -> u32 {
+        if let Some(&i) = self.elem_map.get(&d) {
+            return i;
+        }
+        let i = self.elems.len() as u32;
+        self.elems.push(d);
+        self.elem_map.insert(d, i);
+        i
     }
 
     fn const_u32(&mut self, v: u32) -> Op {
@@ -893,12 +900,105 @@ impl<'a> Compiler<'a> {
     }
 
     fn patch(&mut self, at: usize, target: u32) {
-        match &mut self.code[at] {
-            Instr::Jmp { t }
-            | Instr::Jz { t, .. }
-            | Instr::Jnz { t, .. }
-            | Instr::JltI32 { t, .. } => *t = Tgt(target),
-            _ => {}
+        if let Some(i) = self.code.get(at) {
+            self.code[at] = i.with_target(target);
+        }
+    }
+
+    fn patch_all(&mut self, jumps: &[usize], target: u32) {
+        for &j in jumps {
+            self.patch(j, target);
+        }
+    }
+
+    /// Records that the code from here on is statement `s`'s.
+    fn mark_line(&mut self, s: &Stmt) {
+        let file = self
+            .files
+            .iter()
+            .position(|f| *f == self.m.pous[self.cur.0 as usize].file)
+            .unwrap_or(0) as u32;
+        let entry = LineEntry {
+            pc: self.here(),
+            pou: self.cur.0,
+            file,
+            line: s.line,
+            col: s.col,
+        };
+        match self.lines.last_mut() {
+            Some(l) if l.pc == entry.pc => *l = entry,
+            _ => self.lines.push(entry),
+        }
+    }
+
+    // ----- conditions ----------------------------------------------------------------
+
+    /// Emits jumps taken when `e` (a BOOL) is `when`; returns them for
+    /// patching. Comparisons become one compare-and-branch; NOT flips the
+    /// sense; AND and OR short-circuit when skipping the right operand
+    /// changes nothing (it reads variables and calls, divides, converts
+    /// or indexes nothing).
+    fn branch(&mut self, e: &Expr, when: bool) -> Result<Vec<usize>, CompileError> {
+        let mark = self.frame.top;
+        let is_bool = self.num(e.ty) == Some(Num::B);
+        let r = match &e.kind {
+            ExprKind::Const(Value::Bool(b)) => {
+                if *b == when {
+                    vec![self.emit(Instr::Jmp { t: Tgt(0) })]
+                } else {
+                    Vec::new()
+                }
+            }
+            ExprKind::Unary(UnOp::Not, x) if is_bool => self.branch(x, !when)?,
+            ExprKind::Binary(op @ (BinOp::And | BinOp::Or), x, y)
+                if is_bool
+                    && self.num(x.ty) == Some(Num::B)
+                    && self.num(y.ty) == Some(Num::B)
+                    && quiet(y) =>
+            {
+                // AND jumping on false, OR jumping on true: either operand decides.
+                let either = (*op == BinOp::And) != when;
+                if either {
+                    let mut j = self.branch(x, when)?;
+                    j.extend(self.branch(y, when)?);
+                    j
+                } else {
+                    let skip = self.branch(x, !when)?;
+                    let j = self.branch(y, when)?;
+                    let here = self.here();
+                    self.patch_all(&skip, here);
+                    j
+                }
+            }
+            ExprKind::Binary(
+                op @ (BinOp::Eq | BinOp::Ne | BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge),
+                x,
+                y,
+            ) if self.fused_cmp_ok(x.ty, y.ty) => {
+                let n = self.num(x.ty).unwrap_or(Num::I64);
+                let a = self.expr(x)?;
+                let b = self.expr(y)?;
+                let i = cmp_branch(*op, n, a, b, when);
+                vec![self.emit(i)]
+            }
+            _ => {
+                let c = self.expr(e)?;
+                vec![self.emit(if when {
+                    Instr::Jnz { c, t: Tgt(0) }
+                } else {
+                    Instr::Jz { c, t: Tgt(0) }
+                })]
+            }
+        };
+        self.frame.top = mark;
+        Ok(r)
+    }
+
+    /// Whether a comparison of these operand types is one native branch.
+    fn fused_cmp_ok(&self, lt: TypeId, rt: TypeId) -> bool {
+        match (self.scalar(lt), self.scalar(rt)) {
+            (Some(a), Some(b)) => a == b && Num::of(a).is_some(),
+            _ => false,
         }
     }
 
@@ -912,29 +1012,7 @@ impl<'a> Compiler<'a> {
     }
 
     fn stmt(&mut self, s: &Stmt) -> Result<(), CompileError> {
-        let file = self
-            .files
-            .iter()
-            .position(|f| *f == self.m.pous[self.cur.0 as usize].file)
-            .unwrap_or(0) as u32;
-        let pc = self.here();
-        if self.lines.last().is_none_or(|l| l.pc != pc) {
-            self.lines.push(LineEntry {
-                pc,
-                pou: self.cur.0,
-                file,
-                line: s.line,
-                col: s.col,
-            });
-        } else if let Some(l) = self.lines.last_mut() {
-            *l = LineEntry {
-                pc,
-                pou: self.cur.0,
-                file,
-                line: s.line,
-                col: s.col,
-            };
-        }
+        self.mark_line(s);
         let mark = self.frame.top;
         match &s.kind {
             StmtKind::Assign { place, value } => self.assign(place, value)?,
@@ -953,17 +1031,46 @@ impl<'a> Compiler<'a> {
                 then_body,
                 else_body,
             } => {
-                let c = self.expr(cond)?;
+                // `IF c THEN EXIT` (or CONTINUE; or the ELSE form of
+                // WHILE) is one conditional jump.
+                fn jump_only(b: &[Stmt]) -> Option<&StmtKind> {
+                    match b {
+                        [Stmt {
+                            kind: k @ (StmtKind::Break | StmtKind::Continue),
+                            ..
+                        }] => Some(k),
+                        _ => None,
+                    }
+                }
+                let shortcut = match (jump_only(then_body), jump_only(else_body)) {
+                    (Some(k), None) if else_body.is_empty() => Some((k, true)),
+                    (None, Some(k)) if then_body.is_empty() => Some((k, false)),
+                    _ => None,
+                };
+                if self.loops.last().is_some() {
+                    if let Some((k, when)) = shortcut {
+                        let j = self.branch(cond, when)?;
+                        if let Some(l) = self.loops.last_mut() {
+                            if matches!(k, StmtKind::Break) {
+                                l.breaks.extend(j);
+                            } else {
+                                l.continues.extend(j);
+                            }
+                        }
+                        self.frame.top = mark;
+                        return Ok(());
+                    }
+                }
+                let jf = self.branch(cond, false)?;
                 self.frame.top = mark;
-                let jz = self.emit(Instr::Jz { c, t: Tgt(0) });
                 self.block(then_body)?;
                 if else_body.is_empty() {
                     let end = self.here();
-                    self.patch(jz, end);
+                    self.patch_all(&jf, end);
                 } else {
                     let jmp = self.emit(Instr::Jmp { t: Tgt(0) });
                     let el = self.here();
-                    self.patch(jz, el);
+                    self.patch_all(&jf, el);
                     self.block(else_body)?;
                     let end = self.here();
                     self.patch(jmp, end);
@@ -974,29 +1081,7 @@ impl<'a> Compiler<'a> {
                 arms,
                 default,
             } => self.switch(selector, arms, default)?,
-            StmtKind::Loop { body, latch } => {
-                let top = self.here();
-                self.loops.push(LoopCtx {
-                    breaks: Vec::new(),
-                    continues: Vec::new(),
-                });
-                self.block(body)?;
-                let latch_at = self.here();
-                // The latch belongs to the loop but runs outside its CONTINUE scope.
-                self.block(latch)?;
-                self.emit(Instr::Jmp { t: Tgt(top) });
-                let end = self.here();
-                let ctx = self.loops.pop().unwrap_or(LoopCtx {
-                    breaks: Vec::new(),
-                    continues: Vec::new(),
-                });
-                for b in ctx.breaks {
-                    self.patch(b, end);
-                }
-                for c in ctx.continues {
-                    self.patch(c, latch_at);
-                }
-            }
+            StmtKind::Loop { body, latch } => self.loop_stmt(body, latch)?,
             StmtKind::Break => {
                 let j = self.emit(Instr::Jmp { t: Tgt(0) });
                 if let Some(l) = self.loops.last_mut() {
@@ -1022,6 +1107,199 @@ impl<'a> Compiler<'a> {
         Ok(())
     }
 
+    /// A loop. One whose body starts with `IF c THEN EXIT` (WHILE, FOR)
+    /// is rotated: the test runs before the first iteration and again at
+    /// the bottom, so each iteration costs one branch; at the bottom of a
+    /// FOR, the increment and the test fuse into one `forup`/`fordn`.
+    fn loop_stmt(&mut self, body: &[Stmt], latch: &[Stmt]) -> Result<(), CompileError> {
+        self.loops.push(LoopCtx {
+            breaks: Vec::new(),
+            continues: Vec::new(),
+        });
+        let exit_test = body.first().and_then(exit_test);
+        let latch_at;
+        match exit_test {
+            Some((cond, exit_when)) => {
+                // Small tests are repeated at the top; big ones jumped to.
+                let small = expr_size(cond) <= 16;
+                let entry = if small {
+                    if let Some(test) = body.first() {
+                        self.mark_line(test);
+                    }
+                    let j = self.branch(cond, exit_when)?;
+                    if let Some(l) = self.loops.last_mut() {
+                        l.breaks.extend(j);
+                    }
+                    None
+                } else {
+                    Some(self.emit(Instr::Jmp { t: Tgt(0) }))
+                };
+                let top = self.here();
+                self.block(&body[1..])?;
+                latch_at = self.here();
+                let step = if exit_when {
+                    self.for_step(cond, latch, top)?
+                } else {
+                    None
+                };
+                if let Some(step) = step {
+                    self.emit(step);
+                    let end = self.here();
+                    let ctx = self.loops.pop().unwrap_or(LoopCtx {
+                        breaks: Vec::new(),
+                        continues: Vec::new(),
+                    });
+                    self.patch_all(&ctx.breaks, end);
+                    self.patch_all(&ctx.continues, latch_at);
+                    return Ok(());
+                }
+                self.block(latch)?;
+                let test_at = self.here();
+                if let Some(j) = entry {
+                    self.patch(j, test_at);
+                }
+                if let Some(test) = body.first() {
+                    self.mark_line(test);
+                }
+                let back = self.branch(cond, !exit_when)?;
+                self.patch_all(&back, top);
+            }
+            None => {
+                let top = self.here();
+                self.block(body)?;
+                latch_at = self.here();
+                self.block(latch)?;
+                self.emit(Instr::Jmp { t: Tgt(top) });
+            }
+        }
+        let end = self.here();
+        let ctx = self.loops.pop().unwrap_or(LoopCtx {
+            breaks: Vec::new(),
+            continues: Vec::new(),
+        });
+        self.patch_all(&ctx.breaks, end);
+        self.patch_all(&ctx.continues, latch_at);
+        Ok(())
+    }
+
+    /// The latch of a FOR loop with a constant step, as the IR lowers it
+    /// (`IF v > max - step THEN EXIT; v := v + step`, with the loop test
+    /// `v > end`), is one `forup` (`fordn`): the add, checked against
+    /// overflow (which ends the loop, as the test did), and the branch back
+    /// while `v <= end`. `None` when the loop has another shape.
+    fn for_step(
+        &mut self,
+        test: &Expr,
+        latch: &[Stmt],
+        top: u32,
+    ) -> Result<Option<Instr>, CompileError> {
+        let [Stmt {
+            kind:
+                StmtKind::If {
+                    cond: ovf,
+                    then_body,
+                    else_body,
+                },
+            ..
+        }, inc @ Stmt {
+            kind: StmtKind::Assign { place, value },
+            ..
+        }] = latch
+        else {
+            return Ok(None);
+        };
+        if !else_body.is_empty()
+            || !matches!(
+                then_body.as_slice(),
+                [Stmt {
+                    kind: StmtKind::Break,
+                    ..
+                }]
+            )
+        {
+            return Ok(None);
+        }
+        let simple = |p: &Place| matches!(p.root, Root::Var(_)) && p.proj.is_empty();
+        let same = |a: &Place, b: &Place| match (&a.root, &b.root) {
+            (Root::Var(x), Root::Var(y)) => x == y && simple(a) && simple(b),
+            _ => false,
+        };
+        let ExprKind::Binary(BinOp::Add, x, st) = &value.kind else {
+            return Ok(None);
+        };
+        let (ExprKind::Load(px), ExprKind::Const(Value::Int(step))) = (&x.kind, &st.kind) else {
+            return Ok(None);
+        };
+        let ExprKind::Binary(oop, ov, ok) = &ovf.kind else {
+            return Ok(None);
+        };
+        let (ExprKind::Load(po), ExprKind::Const(Value::Int(k))) = (&ov.kind, &ok.kind) else {
+            return Ok(None);
+        };
+        let ExprKind::Binary(top_op, tv, tend) = &test.kind else {
+            return Ok(None);
+        };
+        let ExprKind::Load(pt) = &tv.kind else {
+            return Ok(None);
+        };
+        if !(same(place, px) && same(place, po) && same(place, pt)) {
+            return Ok(None);
+        }
+        let ty = place.ty;
+        let Some((n, (min, max))) = self
+            .scalar(ty)
+            .and_then(|e| Some((Num::of(e)?, stc_values::int_range(e)?)))
+        else {
+            return Ok(None);
+        };
+        let up = match (oop, top_op) {
+            (BinOp::Gt, BinOp::Gt) if *step > 0 && *k == max - step => true,
+            (BinOp::Lt, BinOp::Lt) if *step < 0 && *k == min - step => false,
+            _ => return Ok(None),
+        };
+        if n.is_float() || n == Num::B || self.scalar(tend.ty) != self.scalar(ty) {
+            return Ok(None);
+        }
+        self.mark_line(inc);
+        let v = match self.var_loc_of(place) {
+            Some(v) => v,
+            None => return Ok(None),
+        };
+        let e = self.expr(tend)?;
+        let s = self.konst(ty, &Value::Int(step.abs()));
+        let t = Tgt(top);
+        use Instr as I;
+        Ok(Some(match (up, n) {
+            (true, Num::I8) => I::ForUpI8 { v, s, e, t },
+            (true, Num::I16) => I::ForUpI16 { v, s, e, t },
+            (true, Num::I32) => I::ForUpI32 { v, s, e, t },
+            (true, Num::I64) => I::ForUpI64 { v, s, e, t },
+            (true, Num::U8) => I::ForUpU8 { v, s, e, t },
+            (true, Num::U16) => I::ForUpU16 { v, s, e, t },
+            (true, Num::U32) => I::ForUpU32 { v, s, e, t },
+            (true, _) => I::ForUpU64 { v, s, e, t },
+            (false, Num::I8) => I::ForDnI8 { v, s, e, t },
+            (false, Num::I16) => I::ForDnI16 { v, s, e, t },
+            (false, Num::I32) => I::ForDnI32 { v, s, e, t },
+            (false, Num::I64) => I::ForDnI64 { v, s, e, t },
+            (false, Num::U8) => I::ForDnU8 { v, s, e, t },
+            (false, Num::U16) => I::ForDnU16 { v, s, e, t },
+            (false, Num::U32) => I::ForDnU32 { v, s, e, t },
+            (false, _) => I::ForDnU64 { v, s, e, t },
+        }))
+    }
+
+    /// The operand of a variable place held directly (not by reference).
+    fn var_loc_of(&mut self, p: &Place) -> Option<Op> {
+        match p.root {
+            Root::Var(v) if p.proj.is_empty() => match self.var_loc(v) {
+                Loc::At(a) => Some(a),
+                _ => None,
+            },
+            _ => None,
+        }
+    }
+
     fn switch(
         &mut self,
         selector: &Expr,
@@ -1032,28 +1310,20 @@ impl<'a> Compiler<'a> {
         let t = selector.ty;
         let num = self.num(t).unwrap_or(Num::I64);
         let mut to_body = Vec::new();
-        let flag = self.temp(1);
         for (ai, arm) in arms.iter().enumerate() {
             for &(lo, hi) in &arm.ranges {
                 let lo_op = self.konst(t, &Value::Int(lo));
                 if lo == hi {
-                    let cmp = self.cmp_instr(BinOp::Eq, num, flag, sel, lo_op);
-                    self.emit(cmp);
+                    let j = self.emit(cmp_branch(BinOp::Eq, num, sel, lo_op, true));
+                    to_body.push((j, ai));
                 } else {
                     let hi_op = self.konst(t, &Value::Int(hi));
-                    let f2 = self.temp(1);
-                    let c1 = self.cmp_instr(BinOp::Le, num, flag, lo_op, sel);
-                    self.emit(c1);
-                    let c2 = self.cmp_instr(BinOp::Le, num, f2, sel, hi_op);
-                    self.emit(c2);
-                    self.emit(Instr::And8 {
-                        d: flag,
-                        a: flag,
-                        b: f2,
-                    });
+                    let below = self.emit(cmp_branch(BinOp::Lt, num, sel, lo_op, true));
+                    let j = self.emit(cmp_branch(BinOp::Le, num, sel, hi_op, true));
+                    to_body.push((j, ai));
+                    let next = self.here();
+                    self.patch(below, next);
                 }
-                let j = self.emit(Instr::Jnz { c: flag, t: Tgt(0) });
-                to_body.push((j, ai));
             }
         }
         let to_default = self.emit(Instr::Jmp { t: Tgt(0) });
@@ -1079,7 +1349,13 @@ impl<'a> Compiler<'a> {
     }
 
     fn assign(&mut self, place: &Place, value: &Expr) -> Result<(), CompileError> {
-        let pl = self.place(place)?;
+        // The element address may be computed after the value only when
+        // the value cannot change the index (it calls nothing).
+        let pl = if has_call(value) {
+            self.place(place)?
+        } else {
+            self.place_lazy(place)?
+        };
         match (pl.loc, pl.part) {
             (Loc::At(d), None)
                 if self.is_scalar(place.ty) && !matches!(value.kind, ExprKind::Check { .. }) =>
@@ -1124,7 +1400,7 @@ impl<'a> Compiler<'a> {
                             unit,
                         });
                     }
-                    Loc::Ptr { .. } => {
+                    _ => {
                         let size = self.size_of(pt);
                         let t = self.temp(size);
                         self.emit(Instr::StrCopy {
@@ -1151,16 +1427,50 @@ impl<'a> Compiler<'a> {
             Loc::At(d) => {
                 self.mov(d, v, size);
             }
-            Loc::Ptr { ptr, off } => {
-                self.emit(Instr::Store {
-                    p: ptr,
-                    a: v,
-                    off,
-                    len: size,
+            Loc::Elem { base: a, idx, desc } if matches!(size, 1 | 2 | 4 | 8) => {
+                self.emit(width_instr(
+                    size,
+                    [
+                        Instr::StElem1 { a, idx, v, desc },
+                        Instr::StElem2 { a, idx, v, desc },
+                        Instr::StElem4 { a, idx, v, desc },
+                        Instr::StElem8 { a, idx, v, desc },
+                    ],
+                ));
+            }
+            Loc::Elem { .. } => {
+                let l = self.materialize(loc);
+                return self.store_loc(l, v, size);
+            }
+            Loc::Ptr { ptr: p, off } => {
+                let a = v;
+                self.emit(match size {
+                    1 => Instr::St1 { p, a, off },
+                    2 => Instr::St2 { p, a, off },
+                    4 => Instr::St4 { p, a, off },
+                    8 => Instr::St8 { p, a, off },
+                    len => Instr::Store { p, a, off, len },
                 });
             }
         }
         Ok(())
+    }
+
+    /// A location computed: an array element becomes a pointer.
+    fn materialize(&mut self, loc: Loc) -> Loc {
+        match loc {
+            Loc::Elem { base, idx, desc } => {
+                let d = self.temp(4);
+                self.emit(Instr::Elem {
+                    d,
+                    a: base,
+                    idx,
+                    desc,
+                });
+                Loc::Ptr { ptr: d, off: 0 }
+            }
+            l => l,
+        }
     }
 
     fn load_loc(&mut self, loc: Loc, size: u32) -> Result<Op, CompileError> {
@@ -1170,15 +1480,33 @@ impl<'a> Compiler<'a> {
                 self.mov(t, a, size);
                 t
             }
-            Loc::Ptr { ptr, off } => {
-                let t = self.temp(size);
-                self.emit(Instr::Load {
-                    d: t,
-                    p: ptr,
-                    off,
-                    len: size,
+            Loc::Ptr { ptr: p, off } => {
+                let d = self.temp(size);
+                self.emit(match size {
+                    1 => Instr::Ld1 { d, p, off },
+                    2 => Instr::Ld2 { d, p, off },
+                    4 => Instr::Ld4 { d, p, off },
+                    8 => Instr::Ld8 { d, p, off },
+                    len => Instr::Load { d, p, off, len },
                 });
-                t
+                d
+            }
+            Loc::Elem { base: a, idx, desc } if matches!(size, 1 | 2 | 4 | 8) => {
+                let d = self.temp(size);
+                self.emit(width_instr(
+                    size,
+                    [
+                        Instr::LdElem1 { d, a, idx, desc },
+                        Instr::LdElem2 { d, a, idx, desc },
+                        Instr::LdElem4 { d, a, idx, desc },
+                        Instr::LdElem8 { d, a, idx, desc },
+                    ],
+                ));
+                d
+            }
+            Loc::Elem { .. } => {
+                let l = self.materialize(loc);
+                return self.load_loc(l, size);
             }
         })
     }
@@ -1215,7 +1543,18 @@ impl<'a> Compiler<'a> {
         }
     }
 
+    /// A place, with every address computed.
     fn place(&mut self, p: &Place) -> Result<PlaceLoc, CompileError> {
+        let pl = self.place_lazy(p)?;
+        Ok(PlaceLoc {
+            loc: self.materialize(pl.loc),
+            part: pl.part,
+        })
+    }
+
+    /// A place; an element of an array at a fixed place may stay a
+    /// [`Loc::Elem`] for the caller to read or write in one instruction.
+    fn place_lazy(&mut self, p: &Place) -> Result<PlaceLoc, CompileError> {
         let mut loc = match &p.root {
             Root::Var(v) => self.var_loc(*v),
             Root::Global(g) => Loc::At(Op::abs(
@@ -1276,36 +1615,32 @@ impl<'a> Compiler<'a> {
                         }
                         loc = offset_loc(loc, off.max(0) as u32);
                     } else {
-                        // A pointer to the array, then one checked step per index.
-                        let ptr = self.temp(4);
-                        match loc {
-                            Loc::At(a) => {
-                                self.emit(Instr::Lea { d: ptr, a });
-                            }
-                            Loc::Ptr { ptr: p0, off } => {
-                                let c = self.const_u32(off);
-                                self.emit(Instr::Add32 {
-                                    d: ptr,
-                                    a: p0,
-                                    b: c,
-                                });
-                            }
-                        }
+                        // One checked step per index: the first from the
+                        // array's place (left lazy when it is the only one),
+                        // the others from the pointer so far.
                         for (k, (e, lo, hi)) in idx.iter().enumerate() {
                             let i = self.expr(e)?;
-                            let i64op = self.widen_to_i64(i, e.ty);
-                            let lo_op = self.const_i64(*lo as i64);
+                            let (i, num) = match self.num(e.ty) {
+                                Some(n) if !n.is_float() => (i, n),
+                                _ => (self.widen_to_i64(i, e.ty), Num::I64),
+                            };
                             let count = (hi - lo + 1).clamp(0, u32::MAX as i128) as u32;
-                            self.emit(Instr::Index {
-                                d: ptr,
-                                a: ptr,
-                                idx: i64op,
-                                lo: lo_op,
+                            let desc = self.elem_desc(ElemDesc {
+                                lo: (*lo).clamp(i64::MIN as i128, i64::MAX as i128) as i64,
                                 count,
                                 stride: mults[k].clamp(0, u32::MAX as i128) as u32,
+                                num,
                             });
+                            loc = match loc {
+                                Loc::At(base) => Loc::Elem { base, idx: i, desc },
+                                l => {
+                                    let p = self.ptr_of(l);
+                                    let d = self.temp(4);
+                                    self.emit(Instr::ElemP { d, p, idx: i, desc });
+                                    Loc::Ptr { ptr: d, off: 0 }
+                                }
+                            };
                         }
-                        loc = Loc::Ptr { ptr, off: 0 };
                     }
                     // A partial index (`a[i]` of `a[i][j]`) leaves the rest.
                     ty = if idx.len() < dims.len() { p.ty } else { elem };
@@ -1344,7 +1679,7 @@ impl<'a> Compiler<'a> {
         match &e.kind {
             ExprKind::Const(v) => Ok(self.konst(e.ty, v)),
             ExprKind::Load(p) => {
-                let pl = self.place(p)?;
+                let pl = self.place_lazy(p)?;
                 match (pl.loc, pl.part) {
                     (Loc::At(a), None) => Ok(a),
                     (loc, None) => {
@@ -1439,9 +1774,7 @@ impl<'a> Compiler<'a> {
             ExprKind::Convert(x) => {
                 let a = self.expr(x)?;
                 let (from, to) = (self.scalar(x.ty), self.scalar(e.ty));
-                let plain = |t: Option<ElemType>| {
-                    t.is_some_and(|t| Num::of(t).is_some() && !stc_values::is_time_like(t))
-                };
+                let plain = plain_numeric;
                 match (from, to) {
                     (Some(f), Some(t)) if f == t => {
                         let size = self.size_of(e.ty);
@@ -1511,6 +1844,9 @@ impl<'a> Compiler<'a> {
                 }
             }
             ExprKind::Intrinsic { func, args } => {
+                if self.native_intrinsic(*func, args, e.ty, d)? {
+                    return Ok(());
+                }
                 let mut ops = Vec::with_capacity(args.len());
                 for a in args {
                     let o = self.expr(a)?;
@@ -1527,6 +1863,101 @@ impl<'a> Compiler<'a> {
             }
         }
         Ok(())
+    }
+
+    /// MIN, MAX, LIMIT, ABS, the shifts, SEL and MOVE on scalars of one
+    /// type as single instructions; `false` when the call is not one of those.
+    fn native_intrinsic(
+        &mut self,
+        f: stc_values::Intrinsic,
+        args: &[Expr],
+        ty: TypeId,
+        d: Op,
+    ) -> Result<bool, CompileError> {
+        use stc_values::Intrinsic as F;
+        let Some(n) = self.num(ty) else {
+            return Ok(false);
+        };
+        let same = |c: &Self, es: &[Expr]| es.iter().all(|a| c.scalar(a.ty) == c.scalar(ty));
+        let num = n.code();
+        match f {
+            F::Min | F::Max if args.len() >= 2 && same(self, args) => {
+                let ops = args
+                    .iter()
+                    .map(|a| self.expr(a))
+                    .collect::<Result<Vec<_>, _>>()?;
+                let acc = if ops.len() == 2 {
+                    d
+                } else {
+                    self.temp(n.size())
+                };
+                let mut a = ops[0];
+                for &b in &ops[1..] {
+                    self.emit(if f == F::Min {
+                        Instr::Min { d: acc, a, b, num }
+                    } else {
+                        Instr::Max { d: acc, a, b, num }
+                    });
+                    a = acc;
+                }
+                self.mov(d, acc, n.size());
+            }
+            F::Limit if args.len() == 3 && same(self, args) => {
+                let lo = self.expr(&args[0])?;
+                let a = self.expr(&args[1])?;
+                let hi = self.expr(&args[2])?;
+                self.emit(Instr::Limit { d, lo, a, hi, num });
+            }
+            F::Abs if args.len() == 1 && same(self, args) => {
+                let a = self.expr(&args[0])?;
+                self.emit(Instr::Abs { d, a, num });
+            }
+            F::Shl | F::Shr | F::Rol | F::Ror
+                if args.len() == 2 && same(self, &args[..1]) && !n.is_float() =>
+            {
+                let Some(nn) = self.num(args[1].ty).filter(|k| !k.is_float()) else {
+                    return Ok(false);
+                };
+                let a = self.expr(&args[0])?;
+                let c = self.expr(&args[1])?;
+                let op = match f {
+                    F::Shl => 0,
+                    F::Shr => 1,
+                    F::Rol => 2,
+                    _ => 3,
+                };
+                self.emit(Instr::Shift {
+                    d,
+                    a,
+                    n: c,
+                    op,
+                    num,
+                    nnum: nn.code(),
+                });
+            }
+            F::Sel
+                if args.len() == 3
+                    && same(self, &args[1..])
+                    && self.num(args[0].ty) == Some(Num::B) =>
+            {
+                let g = self.expr(&args[0])?;
+                let a = self.expr(&args[1])?;
+                let b = self.expr(&args[2])?;
+                self.emit(Instr::Sel {
+                    d,
+                    g,
+                    a,
+                    b,
+                    len: n.size(),
+                });
+            }
+            F::Move if args.len() == 1 && same(self, args) => {
+                let a = self.expr(&args[0])?;
+                self.mov(d, a, n.size());
+            }
+            _ => return Ok(false),
+        }
+        Ok(true)
     }
 
     /// A typed instruction for `a op b`, if the operation is native.
@@ -1839,9 +2270,7 @@ impl<'a> Compiler<'a> {
             && !matches!(self.m.types.kind(tt), TypeKind::String { .. })
         {
             let d = self.temp_of(tt);
-            let plain = |x: Option<ElemType>| {
-                x.is_some_and(|x| Num::of(x).is_some() && !stc_values::is_time_like(x))
-            };
+            let plain = plain_numeric;
             if plain(f) && plain(t) {
                 self.emit(Instr::Cvt {
                     d,
@@ -1864,18 +2293,36 @@ impl<'a> Compiler<'a> {
 
     /// An operand holding the address of a place.
     fn address_of(&mut self, p: &Place) -> Result<Op, CompileError> {
-        let pl = self.place(p)?;
-        let d = self.temp(4);
-        match pl.loc {
+        let pl = self.place_lazy(p)?;
+        Ok(self.ptr_of(pl.loc))
+    }
+
+    /// An operand holding the address of a location.
+    fn ptr_of(&mut self, loc: Loc) -> Op {
+        match loc {
             Loc::At(a) => {
+                let d = self.temp(4);
                 self.emit(Instr::Lea { d, a });
+                d
             }
+            Loc::Ptr { ptr, off: 0 } => ptr,
             Loc::Ptr { ptr, off } => {
+                let d = self.temp(4);
                 let c = self.const_u32(off);
                 self.emit(Instr::Add32 { d, a: ptr, b: c });
+                d
+            }
+            Loc::Elem { base, idx, desc } => {
+                let d = self.temp(4);
+                self.emit(Instr::Elem {
+                    d,
+                    a: base,
+                    idx,
+                    desc,
+                });
+                d
             }
         }
-        Ok(d)
     }
 
     fn call_fb(
@@ -1923,15 +2370,8 @@ impl<'a> Compiler<'a> {
                     frame: region,
                 });
             }
-            Loc::Ptr { ptr, off } => {
-                let p = if off == 0 {
-                    ptr
-                } else {
-                    let d = self.temp(4);
-                    let c = self.const_u32(off);
-                    self.emit(Instr::Add32 { d, a: ptr, b: c });
-                    d
-                };
+            l => {
+                let p = self.ptr_of(l);
                 self.emit(Instr::CallFbInd {
                     pou: fb.0,
                     inst: p,
@@ -1959,6 +2399,11 @@ fn offset_loc(l: Loc, off: u32) -> Loc {
     match l {
         Loc::At(a) => Loc::At(a.plus(off)),
         Loc::Ptr { ptr, off: o } => Loc::Ptr { ptr, off: o + off },
+        Loc::Elem { base, idx, desc } => Loc::Elem {
+            base: base.plus(off),
+            idx,
+            desc,
+        },
     }
 }
 
@@ -2160,4 +2605,190 @@ fn visit_calls(stmts: &[Stmt], f: &mut dyn FnMut(PouId)) {
             _ => {}
         }
     }
+}
+
+/// Whether an expression calls a function (which could change variables).
+fn has_call(e: &Expr) -> bool {
+    match &e.kind {
+        ExprKind::CallFn { .. } => true,
+        ExprKind::Const(_) | ExprKind::CurTime => false,
+        ExprKind::Load(p) => place_has_call(p),
+        ExprKind::Unary(_, x) | ExprKind::Convert(x) => has_call(x),
+        ExprKind::Check { value, .. } => has_call(value),
+        ExprKind::Binary(_, x, y) => has_call(x) || has_call(y),
+        ExprKind::Intrinsic { args, .. } => args.iter().any(has_call),
+    }
+}
+
+fn place_has_call(p: &Place) -> bool {
+    p.proj.iter().any(|pr| match pr {
+        Proj::Index(idx) => idx.iter().any(|(e, _, _)| has_call(e)),
+        _ => false,
+    })
+}
+
+/// The compare-and-branch jumping when `a op b` is `when`. Integers negate
+/// by swapping operands (`!(a < b)` is `b <= a`); floats cannot (NaN), so
+/// they have their own negated branches.
+fn cmp_branch(op: BinOp, n: Num, a: Op, b: Op, when: bool) -> Instr {
+    let t = Tgt(0);
+    // Normalise to <, <=, =, <> (swapping for > and >=).
+    let (op, a, b) = match op {
+        BinOp::Gt => (BinOp::Lt, b, a),
+        BinOp::Ge => (BinOp::Le, b, a),
+        o => (o, a, b),
+    };
+    // The sense to test: for integers, a false `<` is a swapped `<=`.
+    let (op, a, b, negate) = match (op, when, n.is_float()) {
+        (o, true, _) => (o, a, b, false),
+        (BinOp::Eq, false, _) => (BinOp::Ne, a, b, false),
+        (BinOp::Ne, false, _) => (BinOp::Eq, a, b, false),
+        (BinOp::Lt, false, false) => (BinOp::Le, b, a, false),
+        (_, false, false) => (BinOp::Lt, b, a, false),
+        (o, false, true) => (o, a, b, true),
+    };
+    match (op, n, negate) {
+        (BinOp::Lt, Num::F32, true) => Instr::JnltF32 { a, b, t },
+        (BinOp::Lt, Num::F64, true) => Instr::JnltF64 { a, b, t },
+        (_, Num::F32, true) => Instr::JnleF32 { a, b, t },
+        (_, Num::F64, true) => Instr::JnleF64 { a, b, t },
+        (BinOp::Eq, Num::F32, _) => Instr::JeqF32 { a, b, t },
+        (BinOp::Eq, Num::F64, _) => Instr::JeqF64 { a, b, t },
+        (BinOp::Ne, Num::F32, _) => Instr::JneF32 { a, b, t },
+        (BinOp::Ne, Num::F64, _) => Instr::JneF64 { a, b, t },
+        (BinOp::Eq, n, _) => width_instr(
+            n.size(),
+            [
+                Instr::Jeq8 { a, b, t },
+                Instr::Jeq16 { a, b, t },
+                Instr::Jeq32 { a, b, t },
+                Instr::Jeq64 { a, b, t },
+            ],
+        ),
+        (BinOp::Ne, n, _) => width_instr(
+            n.size(),
+            [
+                Instr::Jne8 { a, b, t },
+                Instr::Jne16 { a, b, t },
+                Instr::Jne32 { a, b, t },
+                Instr::Jne64 { a, b, t },
+            ],
+        ),
+        (BinOp::Lt, n, _) => match n {
+            Num::I8 => Instr::JltI8 { a, b, t },
+            Num::I16 => Instr::JltI16 { a, b, t },
+            Num::I32 => Instr::JltI32 { a, b, t },
+            Num::I64 => Instr::JltI64 { a, b, t },
+            Num::U8 | Num::B => Instr::JltU8 { a, b, t },
+            Num::U16 => Instr::JltU16 { a, b, t },
+            Num::U32 => Instr::JltU32 { a, b, t },
+            Num::U64 => Instr::JltU64 { a, b, t },
+            Num::F32 => Instr::JltF32 { a, b, t },
+            Num::F64 => Instr::JltF64 { a, b, t },
+        },
+        (_, n, _) => match n {
+            Num::I8 => Instr::JleI8 { a, b, t },
+            Num::I16 => Instr::JleI16 { a, b, t },
+            Num::I32 => Instr::JleI32 { a, b, t },
+            Num::I64 => Instr::JleI64 { a, b, t },
+            Num::U8 | Num::B => Instr::JleU8 { a, b, t },
+            Num::U16 => Instr::JleU16 { a, b, t },
+            Num::U32 => Instr::JleU32 { a, b, t },
+            Num::U64 => Instr::JleU64 { a, b, t },
+            Num::F32 => Instr::JleF32 { a, b, t },
+            Num::F64 => Instr::JleF64 { a, b, t },
+        },
+    }
+}
+
+/// Whether evaluating `e` or not is indistinguishable: it reads variables
+/// and constants and computes without calls, division, conversion, range
+/// checks or computed indexes (all of which may fault or have effects).
+fn quiet(e: &Expr) -> bool {
+    match &e.kind {
+        ExprKind::Const(_) => true,
+        ExprKind::Load(p) => p.proj.iter().all(|pr| match pr {
+            Proj::Index(idx) => idx
+                .iter()
+                .all(|(e, _, _)| matches!(e.kind, ExprKind::Const(_))),
+            _ => true,
+        }),
+        ExprKind::Unary(_, x) => quiet(x),
+        ExprKind::Binary(op, x, y) => {
+            matches!(
+                op,
+                BinOp::Eq
+                    | BinOp::Ne
+                    | BinOp::Lt
+                    | BinOp::Le
+                    | BinOp::Gt
+                    | BinOp::Ge
+                    | BinOp::And
+                    | BinOp::Or
+                    | BinOp::Xor
+            ) && quiet(x)
+                && quiet(y)
+        }
+        _ => false,
+    }
+}
+
+/// `IF c THEN EXIT` (exit when `c` is TRUE) or `IF c THEN ELSE EXIT` (when
+/// FALSE): the loop test at the top of a FOR or WHILE body.
+fn exit_test(s: &Stmt) -> Option<(&Expr, bool)> {
+    let StmtKind::If {
+        cond,
+        then_body,
+        else_body,
+    } = &s.kind
+    else {
+        return None;
+    };
+    let is_break = |b: &[Stmt]| {
+        matches!(
+            b,
+            [Stmt {
+                kind: StmtKind::Break,
+                ..
+            }]
+        )
+    };
+    if else_body.is_empty() && is_break(then_body) {
+        Some((cond, true))
+    } else if then_body.is_empty() && is_break(else_body) {
+        Some((cond, false))
+    } else {
+        None
+    }
+}
+
+/// The number of nodes of an expression (to decide whether to repeat it).
+fn expr_size(e: &Expr) -> usize {
+    1 + match &e.kind {
+        ExprKind::Const(_) | ExprKind::CurTime => 0,
+        ExprKind::Load(p) => p
+            .proj
+            .iter()
+            .map(|pr| match pr {
+                Proj::Index(idx) => idx.iter().map(|(e, _, _)| expr_size(e)).sum(),
+                _ => 0,
+            })
+            .sum(),
+        ExprKind::Unary(_, x) | ExprKind::Convert(x) => expr_size(x),
+        ExprKind::Check { value, .. } => expr_size(value),
+        ExprKind::Binary(_, x, y) => expr_size(x) + expr_size(y),
+        ExprKind::CallFn { .. } => 100,
+        ExprKind::Intrinsic { args, .. } => args.iter().map(expr_size).sum(),
+    }
+}
+
+/// Whether a conversion between scalars of this type is the plain numeric
+/// `cvt` (time and date types and characters convert through `stc_values`:
+/// calendars, and WCHAR to CHAR faults above 255).
+fn plain_numeric(t: Option<ElemType>) -> bool {
+    t.is_some_and(|t| {
+        Num::of(t).is_some()
+            && !stc_values::is_time_like(t)
+            && !matches!(t, ElemType::Char | ElemType::Wchar)
+    })
 }

@@ -125,6 +125,8 @@ impl Writer {
                 w.u32(v.offset);
                 w.u8(v.in_frame as u8);
                 w.u8(v.is_ref as u8);
+                w.opt(&v.location, |w, a| w.address(a));
+                w.u8(v.constant as u8);
             });
         });
         w.seq(&img.globals, |w, g| {
@@ -158,6 +160,12 @@ impl Writer {
             w.std_op(&c.op);
             w.seq(&c.args, |w, a| w.std_arg(a));
             w.std_arg(&c.result);
+        });
+        w.seq(&img.elems, |w, e| {
+            w.u64(e.lo as u64);
+            w.u32(e.count);
+            w.u32(e.stride);
+            w.u8(e.num.code() as u8);
         });
         w.seq(&img.lines, |w, l| {
             w.u32(l.pc);
@@ -247,6 +255,12 @@ impl Writer {
             TypeDesc::Instance { pou } => {
                 self.u8(5);
                 self.u32(*pou);
+            }
+            TypeDesc::Subrange { base, lo, hi } => {
+                self.u8(6);
+                self.elem(*base);
+                self.i128(*lo);
+                self.i128(*hi);
             }
         }
     }
@@ -508,6 +522,11 @@ impl Reader<'_> {
                 })?,
             },
             5 => TypeDesc::Instance { pou: self.u32()? },
+            6 => TypeDesc::Subrange {
+                base: self.elem()?,
+                lo: self.i128()?,
+                hi: self.i128()?,
+            },
             _ => return Err(self.err("an unknown type kind")),
         })
     }
@@ -641,6 +660,8 @@ impl Reader<'_> {
                         offset: r.u32()?,
                         in_frame: r.bool()?,
                         is_ref: r.bool()?,
+                        location: r.opt(|r| r.address())?,
+                        constant: r.bool()?,
                     })
                 })?,
             })
@@ -689,6 +710,18 @@ impl Reader<'_> {
                 result: r.std_arg()?,
             })
         })?;
+        let elems = self.seq(|r| {
+            Ok(ElemDesc {
+                lo: r.u64()? as i64,
+                count: r.u32()?,
+                stride: r.u32()?,
+                num: {
+                    let c = r.u8()?;
+                    crate::num::Num::from_code(c as u32)
+                        .ok_or_else(|| r.err("unknown scalar kind of an array index"))?
+                },
+            })
+        })?;
         let lines = self.seq(|r| {
             Ok(LineEntry {
                 pc: r.u32()?,
@@ -712,6 +745,7 @@ impl Reader<'_> {
             programs,
             io,
             calls,
+            elems,
             lines,
             files,
         })

@@ -36,6 +36,8 @@ pub struct Image {
     pub io: Vec<IoSlot>,
     /// Calls of standard functions and generic operations (by descriptor).
     pub calls: Vec<StdCall>,
+    /// Array dimensions indexed by the `elem` instructions.
+    pub elems: Vec<ElemDesc>,
     /// Source positions: for each instruction index where a statement starts.
     pub lines: Vec<LineEntry>,
     pub files: Vec<String>,
@@ -50,6 +52,52 @@ impl Image {
     /// Where the stack starts.
     pub fn stack_base(&self) -> u32 {
         self.data_size + self.consts.len() as u32
+    }
+
+    /// The elementary type a value of type `t` is stored as (scalars,
+    /// enumerations, subranges), if it is one.
+    pub fn scalar_of(&self, t: TypeRef) -> Option<ElemType> {
+        match self.types.get(t as usize)? {
+            TypeDesc::Scalar(e)
+            | TypeDesc::Subrange { base: e, .. }
+            | TypeDesc::Enum { base: e, .. } => Some(*e),
+            _ => None,
+        }
+    }
+
+    /// The size in bytes of a value of type `t` (a structure without its
+    /// trailing padding); 0 for an unknown type. Bounded for hostile tables.
+    pub fn type_size(&self, t: TypeRef) -> u64 {
+        self.type_size_at(t, 0)
+    }
+
+    fn type_size_at(&self, t: TypeRef, depth: u32) -> u64 {
+        if depth > 64 {
+            return 0;
+        }
+        match self.types.get(t as usize) {
+            Some(TypeDesc::Scalar(e))
+            | Some(TypeDesc::Enum { base: e, .. })
+            | Some(TypeDesc::Subrange { base: e, .. }) => stc_ir::layout::elem_size(*e) as u64,
+            Some(TypeDesc::String { wide, cap }) => 2 + *cap as u64 * if *wide { 2 } else { 1 },
+            Some(TypeDesc::Array { dims, stride, .. }) => {
+                let n: i128 = dims
+                    .iter()
+                    .map(|(l, h)| (*h as i128 - *l as i128 + 1).max(0))
+                    .fold(1i128, |a, n| a.saturating_mul(n));
+                (n.clamp(0, u32::MAX as i128) as u64).saturating_mul(*stride as u64)
+            }
+            Some(TypeDesc::Struct { fields, .. }) => fields
+                .iter()
+                .map(|f| (f.offset as u64).saturating_add(self.type_size_at(f.ty, depth + 1)))
+                .max()
+                .unwrap_or(0),
+            Some(TypeDesc::Instance { pou }) => self
+                .pous
+                .get(*pou as usize)
+                .map_or(0, |p| p.instance_size as u64),
+            None => 0,
+        }
     }
 
     pub fn memory_size(&self) -> u64 {
@@ -100,6 +148,12 @@ pub enum TypeDesc {
     Instance {
         pou: u32,
     },
+    /// An integer type restricted to `lo..=hi` (stored as `base`).
+    Subrange {
+        base: ElemType,
+        lo: i128,
+        hi: i128,
+    },
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -131,8 +185,13 @@ pub struct VarDesc {
     pub offset: u32,
     /// Whether the variable lives in the frame (functions, VAR_TEMP).
     pub in_frame: bool,
-    /// A reference (VAR_IN_OUT, VAR_EXTERNAL): the slot holds an address.
+    /// A reference (VAR_IN_OUT, VAR_EXTERNAL, a located variable): the slot
+    /// holds an address.
     pub is_ref: bool,
+    /// The direct address of a located variable (`AT %IX0.0`).
+    pub location: Option<DirectAddress>,
+    /// Declared CONSTANT: not to be changed from outside.
+    pub constant: bool,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -248,4 +307,15 @@ pub enum StdOp {
     Unary(stc_values::UnOp),
     Convert,
     Trunc,
+}
+
+/// One dimension of an array as the `elem` instructions index it: element
+/// `idx` (read as the scalar kind `num`) is at `(idx - lo) * stride` bytes
+/// from the start, for `lo <= idx < lo + count`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct ElemDesc {
+    pub lo: i64,
+    pub count: u32,
+    pub stride: u32,
+    pub num: crate::num::Num,
 }

@@ -148,6 +148,22 @@ macro_rules! instructions {
                 table.get(opcode as usize).copied()
             }
 
+            /// The jump target of a branch, if it has one.
+            pub fn target(&self) -> Option<u32> {
+                let kinds = Instr::field_kinds(self.opcode())?;
+                let i = kinds.iter().position(|k| *k == FieldKind::Target)?;
+                self.fields().get(i).copied()
+            }
+
+            /// The same branch to another target (other instructions unchanged).
+            pub fn with_target(&self, t: u32) -> Instr {
+                let Some(kinds) = Instr::field_kinds(self.opcode()) else { return *self };
+                let Some(i) = kinds.iter().position(|k| *k == FieldKind::Target) else { return *self };
+                let mut f = self.fields();
+                f[i] = t;
+                Instr::from_parts(self.opcode(), &f).unwrap_or(*self)
+            }
+
             /// Builds an instruction from its opcode and fields (the inverse
             /// of `opcode` and `fields`); `None` for an unknown opcode or the
             /// wrong number of fields.
@@ -287,9 +303,6 @@ instructions! {
     SetPart "setpart" [0] { d: Op, a: Op, width: u32, part: u32, index: u32 }
     // References and indexing. Addresses are 4-byte values.
     Lea "lea" [4] { d: Op, a: Op }
-    /// `d := a + (idx - lo) * stride`, after checking `lo <= idx < lo + count`;
-    /// `idx` is an 8-byte signed integer.
-    Index "index" [0] { d: Op, a: Op, idx: Op, lo: Op, count: u32, stride: u32 }
     /// `d := mem[*p + off .. + len]`, `mem[*p + off .. + len] := a`.
     Load "load" [0] { d: Op, p: Op, off: u32, len: u32 }
     Store "store" [0] { p: Op, a: Op, off: u32, len: u32 }
@@ -297,8 +310,86 @@ instructions! {
     Jmp "jmp" [0] { t: Tgt }
     Jz "jz" [1] { c: Op, t: Tgt }
     Jnz "jnz" [1] { c: Op, t: Tgt }
-    /// Jump to `t` if `a < b` (signed 32-bit): the head of most loops.
+    // Compare and branch: jump to `t` if the comparison holds.
+    JltI8 "jlt.i8" [1] { a: Op, b: Op, t: Tgt }
+    JltI16 "jlt.i16" [2] { a: Op, b: Op, t: Tgt }
     JltI32 "jlt.i32" [4] { a: Op, b: Op, t: Tgt }
+    JltI64 "jlt.i64" [8] { a: Op, b: Op, t: Tgt }
+    JltU8 "jlt.u8" [1] { a: Op, b: Op, t: Tgt }
+    JltU16 "jlt.u16" [2] { a: Op, b: Op, t: Tgt }
+    JltU32 "jlt.u32" [4] { a: Op, b: Op, t: Tgt }
+    JltU64 "jlt.u64" [8] { a: Op, b: Op, t: Tgt }
+    JltF32 "jlt.f32" [4] { a: Op, b: Op, t: Tgt }
+    JltF64 "jlt.f64" [8] { a: Op, b: Op, t: Tgt }
+    JleI8 "jle.i8" [1] { a: Op, b: Op, t: Tgt }
+    JleI16 "jle.i16" [2] { a: Op, b: Op, t: Tgt }
+    JleI32 "jle.i32" [4] { a: Op, b: Op, t: Tgt }
+    JleI64 "jle.i64" [8] { a: Op, b: Op, t: Tgt }
+    JleU8 "jle.u8" [1] { a: Op, b: Op, t: Tgt }
+    JleU16 "jle.u16" [2] { a: Op, b: Op, t: Tgt }
+    JleU32 "jle.u32" [4] { a: Op, b: Op, t: Tgt }
+    JleU64 "jle.u64" [8] { a: Op, b: Op, t: Tgt }
+    JleF32 "jle.f32" [4] { a: Op, b: Op, t: Tgt }
+    JleF64 "jle.f64" [8] { a: Op, b: Op, t: Tgt }
+    Jeq8 "jeq.8" [1] { a: Op, b: Op, t: Tgt }
+    Jeq16 "jeq.16" [2] { a: Op, b: Op, t: Tgt }
+    Jeq32 "jeq.32" [4] { a: Op, b: Op, t: Tgt }
+    Jeq64 "jeq.64" [8] { a: Op, b: Op, t: Tgt }
+    JeqF32 "jeq.f32" [4] { a: Op, b: Op, t: Tgt }
+    JeqF64 "jeq.f64" [8] { a: Op, b: Op, t: Tgt }
+    Jne8 "jne.8" [1] { a: Op, b: Op, t: Tgt }
+    Jne16 "jne.16" [2] { a: Op, b: Op, t: Tgt }
+    Jne32 "jne.32" [4] { a: Op, b: Op, t: Tgt }
+    Jne64 "jne.64" [8] { a: Op, b: Op, t: Tgt }
+    JneF32 "jne.f32" [4] { a: Op, b: Op, t: Tgt }
+    JneF64 "jne.f64" [8] { a: Op, b: Op, t: Tgt }
+    // Float branches on a false comparison (true when an operand is NaN).
+    JnltF32 "jnlt.f32" [4] { a: Op, b: Op, t: Tgt }
+    JnltF64 "jnlt.f64" [8] { a: Op, b: Op, t: Tgt }
+    JnleF32 "jnle.f32" [4] { a: Op, b: Op, t: Tgt }
+    JnleF64 "jnle.f64" [8] { a: Op, b: Op, t: Tgt }
+    // The latch of a FOR loop with a constant step: `v := v + s` (up) or
+    // `v := v - s` (down), then jump to `t` while `v <= e` (`v >= e`); when
+    // the new value would overflow, `v` keeps its value and the loop ends.
+    ForUpI8 "forup.i8" [1] { v: Op, s: Op, e: Op, t: Tgt }
+    ForUpI16 "forup.i16" [2] { v: Op, s: Op, e: Op, t: Tgt }
+    ForUpI32 "forup.i32" [4] { v: Op, s: Op, e: Op, t: Tgt }
+    ForUpI64 "forup.i64" [8] { v: Op, s: Op, e: Op, t: Tgt }
+    ForUpU8 "forup.u8" [1] { v: Op, s: Op, e: Op, t: Tgt }
+    ForUpU16 "forup.u16" [2] { v: Op, s: Op, e: Op, t: Tgt }
+    ForUpU32 "forup.u32" [4] { v: Op, s: Op, e: Op, t: Tgt }
+    ForUpU64 "forup.u64" [8] { v: Op, s: Op, e: Op, t: Tgt }
+    ForDnI8 "fordn.i8" [1] { v: Op, s: Op, e: Op, t: Tgt }
+    ForDnI16 "fordn.i16" [2] { v: Op, s: Op, e: Op, t: Tgt }
+    ForDnI32 "fordn.i32" [4] { v: Op, s: Op, e: Op, t: Tgt }
+    ForDnI64 "fordn.i64" [8] { v: Op, s: Op, e: Op, t: Tgt }
+    ForDnU8 "fordn.u8" [1] { v: Op, s: Op, e: Op, t: Tgt }
+    ForDnU16 "fordn.u16" [2] { v: Op, s: Op, e: Op, t: Tgt }
+    ForDnU32 "fordn.u32" [4] { v: Op, s: Op, e: Op, t: Tgt }
+    ForDnU64 "fordn.u64" [8] { v: Op, s: Op, e: Op, t: Tgt }
+    /// The address of an array element: `d := &a + (idx - lo) * stride`
+    /// after checking `lo <= idx < lo + count` (`desc` indexes
+    /// `Image::elems`: lo, count, stride and the scalar kind of `idx`).
+    Elem "elem" [0] { d: Op, a: Op, idx: Op, desc: u32 }
+    /// The same from the address held in `p`.
+    ElemP "elem.p" [0] { d: Op, p: Op, idx: Op, desc: u32 }
+    LdElem1 "ldelem.1" [0] { d: Op, a: Op, idx: Op, desc: u32 }
+    LdElem2 "ldelem.2" [0] { d: Op, a: Op, idx: Op, desc: u32 }
+    LdElem4 "ldelem.4" [0] { d: Op, a: Op, idx: Op, desc: u32 }
+    LdElem8 "ldelem.8" [0] { d: Op, a: Op, idx: Op, desc: u32 }
+    StElem1 "stelem.1" [0] { a: Op, idx: Op, v: Op, desc: u32 }
+    StElem2 "stelem.2" [0] { a: Op, idx: Op, v: Op, desc: u32 }
+    StElem4 "stelem.4" [0] { a: Op, idx: Op, v: Op, desc: u32 }
+    StElem8 "stelem.8" [0] { a: Op, idx: Op, v: Op, desc: u32 }
+    // Scalars through a pointer: `d := mem[*p + off]`, `mem[*p + off] := a`.
+    Ld1 "ld.1" [0] { d: Op, p: Op, off: u32 }
+    Ld2 "ld.2" [0] { d: Op, p: Op, off: u32 }
+    Ld4 "ld.4" [0] { d: Op, p: Op, off: u32 }
+    Ld8 "ld.8" [0] { d: Op, p: Op, off: u32 }
+    St1 "st.1" [0] { p: Op, a: Op, off: u32 }
+    St2 "st.2" [0] { p: Op, a: Op, off: u32 }
+    St4 "st.4" [0] { p: Op, a: Op, off: u32 }
+    St8 "st.8" [0] { p: Op, a: Op, off: u32 }
     /// Calls: the callee's frame starts at `frame` bytes into the caller's.
     CallFn "callfn" [0] { pou: u32, frame: u32 }
     /// `inst` is the instance (its address is the operand's address).
@@ -306,6 +397,16 @@ instructions! {
     /// `inst` holds the address of the instance.
     CallFbInd "callfb.ind" [4] { pou: u32, inst: Op, frame: u32 }
     Ret "ret" [0] {}
+    // Standard functions on one scalar kind (`num`, see `vm::Num`).
+    Min "min" [0] { d: Op, a: Op, b: Op, num: u32 }
+    Max "max" [0] { d: Op, a: Op, b: Op, num: u32 }
+    Limit "limit" [0] { d: Op, lo: Op, a: Op, hi: Op, num: u32 }
+    Abs "abs" [0] { d: Op, a: Op, num: u32 }
+    /// SHL, SHR, ROL, ROR (`op` 0..3) of `a` (scalar kind `num`) by `n`
+    /// (scalar kind `nnum`).
+    Shift "shift" [0] { d: Op, a: Op, n: Op, op: u32, num: u32, nnum: u32 }
+    /// `d := if g { b } else { a }`, `len` bytes.
+    Sel "sel" [0] { d: Op, g: Op, a: Op, b: Op, len: u32 }
     /// A standard function or generic operation through its descriptor.
     Std "std" [0] { call: u32 }
     /// `d := ` the task clock (TIME, 8 bytes).
@@ -336,13 +437,11 @@ mod tests {
                 frame: 24,
             },
             Instr::Ret {},
-            Instr::Index {
+            Instr::Elem {
                 d: Op::frame(0),
                 a: Op::frame(4),
                 idx: Op::frame(8),
-                lo: Op::abs(9),
-                count: 10,
-                stride: 4,
+                desc: 9,
             },
         ];
         for i in samples {
@@ -359,6 +458,20 @@ mod tests {
                 .iter()
                 .collect::<std::collections::HashSet<_>>()
                 .len()
+        );
+    }
+}
+
+#[cfg(test)]
+mod size {
+    #[test]
+    fn instructions_stay_small() {
+        // A tag and at most six 4-byte fields: the interpreter's working
+        // set stays in cache.
+        assert!(
+            std::mem::size_of::<super::Instr>() <= 28,
+            "{}",
+            std::mem::size_of::<super::Instr>()
         );
     }
 }

@@ -7,6 +7,8 @@
 //! check is an "invalid bytecode" fault, never a crash. The step budget
 //! counts every instruction (the watchdog of `--max-steps`).
 
+use std::cmp::Ordering::{Equal, Less};
+
 use stc_ir::FaultKind;
 use stc_values::Value;
 
@@ -176,7 +178,7 @@ impl Machine {
         pou: u32,
         now: i64,
         max_steps: u64,
-    ) -> Result<(), VmFault> {
+    ) -> Result<u64, VmFault> {
         let image = self.image.clone();
         let fp = image.stack_base();
         let mut cpu = Cpu {
@@ -189,7 +191,7 @@ impl Machine {
         let r = enter_frame(&image, &mut self.mem, pou, fp)
             .and_then(|_| run(&image, &mut self.mem, &mut cpu));
         match r {
-            Ok(()) => Ok(()),
+            Ok(()) => Ok(max_steps - cpu.steps),
             Err(t) => {
                 let kind = match t {
                     Trap::Fault(k) => k,
@@ -212,37 +214,109 @@ fn enter_frame(image: &Image, m: &mut [u8], pou: u32, fp: u32) -> Result<(), Tra
     Ok(())
 }
 
+/// `?` for the interpreter loop: leaves the loop with the error, so the
+/// loop's state (kept in locals) is written back once.
+macro_rules! tr {
+    ($e:expr) => {
+        match $e {
+            Ok(v) => v,
+            Err(e) => break Err(e),
+        }
+    };
+}
+
 macro_rules! bin {
-    ($m:ident, $cpu:ident, $t:ty, $d:ident, $a:ident, $b:ident, |$x:ident, $y:ident| $e:expr) => {{
-        let $x: $t = ld($m, addr(&$cpu.bases, $a))?;
-        let $y: $t = ld($m, addr(&$cpu.bases, $b))?;
-        st($m, addr(&$cpu.bases, $d), $e)?;
+    ($m:ident, $b:ident, $t:ty, $d:ident, $a:ident, $bb:ident, |$x:ident, $y:ident| $e:expr) => {{
+        let $x: $t = tr!(ld($m, addr(&$b, $a)));
+        let $y: $t = tr!(ld($m, addr(&$b, $bb)));
+        tr!(st($m, addr(&$b, $d), $e));
     }};
 }
 
 macro_rules! cmp {
-    ($m:ident, $cpu:ident, $t:ty, $d:ident, $a:ident, $b:ident, |$x:ident, $y:ident| $e:expr) => {{
-        let $x: $t = ld($m, addr(&$cpu.bases, $a))?;
-        let $y: $t = ld($m, addr(&$cpu.bases, $b))?;
-        st_bool($m, addr(&$cpu.bases, $d), $e)?;
+    ($m:ident, $b:ident, $t:ty, $d:ident, $a:ident, $bb:ident, |$x:ident, $y:ident| $e:expr) => {{
+        let $x: $t = tr!(ld($m, addr(&$b, $a)));
+        let $y: $t = tr!(ld($m, addr(&$b, $bb)));
+        tr!(st_bool($m, addr(&$b, $d), $e));
     }};
 }
 
 macro_rules! un {
-    ($m:ident, $cpu:ident, $t:ty, $d:ident, $a:ident, |$x:ident| $e:expr) => {{
-        let $x: $t = ld($m, addr(&$cpu.bases, $a))?;
-        st($m, addr(&$cpu.bases, $d), $e)?;
+    ($m:ident, $b:ident, $t:ty, $d:ident, $a:ident, |$x:ident| $e:expr) => {{
+        let $x: $t = tr!(ld($m, addr(&$b, $a)));
+        tr!(st($m, addr(&$b, $d), $e));
     }};
 }
 
 macro_rules! div {
-    ($m:ident, $cpu:ident, $t:ty, $d:ident, $a:ident, $b:ident, $op:ident) => {{
-        let x: $t = ld($m, addr(&$cpu.bases, $a))?;
-        let y: $t = ld($m, addr(&$cpu.bases, $b))?;
+    ($m:ident, $b:ident, $t:ty, $d:ident, $a:ident, $bb:ident, $op:ident) => {{
+        let x: $t = tr!(ld($m, addr(&$b, $a)));
+        let y: $t = tr!(ld($m, addr(&$b, $bb)));
         if y == 0 {
-            return Err(Trap::Fault(FaultKind::DivisionByZero));
+            break Err(Trap::Fault(FaultKind::DivisionByZero));
         }
-        st($m, addr(&$cpu.bases, $d), x.$op(y))?;
+        tr!(st($m, addr(&$b, $d), x.$op(y)));
+    }};
+}
+
+/// Compare and branch.
+macro_rules! jcmp {
+    ($m:ident, $b:ident, $pc:ident, $t:ty, $a:ident, $bb:ident, $tg:ident, |$x:ident, $y:ident| $e:expr) => {{
+        let $x: $t = tr!(ld($m, addr(&$b, $a)));
+        let $y: $t = tr!(ld($m, addr(&$b, $bb)));
+        if $e {
+            $pc = $tg.0 as usize;
+        }
+    }};
+}
+
+/// The FOR latch: step without overflow, then compare with the end and
+/// branch; an overflowing step ends the loop.
+macro_rules! forstep {
+    ($m:ident, $b:ident, $pc:ident, $t:ty, $v:ident, $s:ident, $e:ident, $tg:ident, $up:expr) => {{
+        let va = addr(&$b, $v);
+        let x: $t = tr!(ld($m, va));
+        let s: $t = tr!(ld($m, addr(&$b, $s)));
+        let e: $t = tr!(ld($m, addr(&$b, $e)));
+        let next = if $up { x.checked_add(s) } else { x.checked_sub(s) };
+        if let Some(n) = next {
+            tr!(st($m, va, n));
+            if if $up { n <= e } else { n >= e } {
+                $pc = $tg.0 as usize;
+            }
+        }
+    }};
+}
+
+/// Load or store a scalar through a pointer.
+macro_rules! ldp {
+    ($m:ident, $b:ident, $t:ty, $d:ident, $p:ident, $off:ident) => {{
+        let src = (tr!(ld::<u32>($m, addr(&$b, $p))) as usize).wrapping_add($off as usize);
+        let v: $t = tr!(ld($m, src));
+        tr!(st($m, addr(&$b, $d), v));
+    }};
+}
+macro_rules! stp {
+    ($m:ident, $b:ident, $t:ty, $p:ident, $a:ident, $off:ident) => {{
+        let dst = (tr!(ld::<u32>($m, addr(&$b, $p))) as usize).wrapping_add($off as usize);
+        let v: $t = tr!(ld($m, addr(&$b, $a)));
+        tr!(st($m, dst, v));
+    }};
+}
+
+/// Load or store an array element.
+macro_rules! ldelem {
+    ($m:ident, $b:ident, $img:ident, $t:ty, $d:ident, $a:ident, $idx:ident, $desc:ident) => {{
+        let at = tr!(elem_addr($m, $img, addr(&$b, $a), addr(&$b, $idx), $desc));
+        let v: $t = tr!(ld($m, at));
+        tr!(st($m, addr(&$b, $d), v));
+    }};
+}
+macro_rules! stelem {
+    ($m:ident, $b:ident, $img:ident, $t:ty, $a:ident, $idx:ident, $v:ident, $desc:ident) => {{
+        let at = tr!(elem_addr($m, $img, addr(&$b, $a), addr(&$b, $idx), $desc));
+        let v: $t = tr!(ld($m, addr(&$b, $v)));
+        tr!(st($m, at, v));
     }};
 }
 
@@ -251,137 +325,291 @@ fn addr(bases: &[u32; 4], op: Op) -> usize {
     bases[(op.0 >> 30) as usize].wrapping_add(op.0 & OFFSET_MASK) as usize
 }
 
+/// Reads an array index of scalar kind `n` as an `i64` (`None`: a 64-bit
+/// unsigned value beyond `i64`, out of every range).
+#[inline(always)]
+fn read_index(m: &[u8], a: usize, n: Num) -> Result<Option<i64>, Trap> {
+    Ok(Some(match n {
+        Num::I16 => ld::<i16>(m, a)? as i64,
+        Num::I32 => ld::<i32>(m, a)? as i64,
+        Num::I64 => ld::<i64>(m, a)?,
+        Num::I8 => ld::<i8>(m, a)? as i64,
+        Num::U8 | Num::B => ld::<u8>(m, a)? as i64,
+        Num::U16 => ld::<u16>(m, a)? as i64,
+        Num::U32 => ld::<u32>(m, a)? as i64,
+        Num::U64 => match i64::try_from(ld::<u64>(m, a)?) {
+            Ok(v) => v,
+            Err(_) => return Ok(None),
+        },
+        Num::F32 | Num::F64 => return Err(Trap::Invalid),
+    }))
+}
+
+/// The address of element `idx` of the array at `base`, bounds-checked.
+#[inline(always)]
+fn elem_addr(m: &[u8], img: &Image, base: usize, idx: usize, desc: u32) -> Result<usize, Trap> {
+    let d = img.elems.get(desc as usize).ok_or(Trap::Invalid)?;
+    let k = read_index(m, idx, d.num)?
+        .and_then(|i| i.checked_sub(d.lo))
+        .filter(|k| (*k as u64) < d.count as u64)
+        .ok_or(Trap::Fault(FaultKind::IndexOutOfBounds))?;
+    Ok(base.wrapping_add(k as usize * d.stride as usize))
+}
+
+/// MIN or MAX of two scalars of kind `n`: `b` when it compares `want`
+/// against `a` (so a NaN keeps `a`), as `stc_values` picks.
+fn min_max(m: &mut [u8], d: usize, a: usize, b: usize, n: Num, max: bool) -> Result<(), Trap> {
+    macro_rules! pick {
+        ($t:ty) => {{
+            let x: $t = ld(m, a)?;
+            let y: $t = ld(m, b)?;
+            st(
+                m,
+                d,
+                if (max && y > x) || (!max && y < x) {
+                    y
+                } else {
+                    x
+                },
+            )
+        }};
+    }
+    match n {
+        Num::I8 => pick!(i8),
+        Num::I16 => pick!(i16),
+        Num::I32 => pick!(i32),
+        Num::I64 => pick!(i64),
+        Num::U8 | Num::B => pick!(u8),
+        Num::U16 => pick!(u16),
+        Num::U32 => pick!(u32),
+        Num::U64 => pick!(u64),
+        Num::F32 => pick!(f32),
+        Num::F64 => pick!(f64),
+    }
+}
+
+/// LIMIT(lo, x, hi) as `stc_values` computes it: `max(x, lo)`, then `min` with `hi`.
+fn limit(m: &mut [u8], d: usize, lo: usize, a: usize, hi: usize, n: Num) -> Result<(), Trap> {
+    macro_rules! lim {
+        ($t:ty) => {{
+            let l: $t = ld(m, lo)?;
+            let x: $t = ld(m, a)?;
+            let h: $t = ld(m, hi)?;
+            let low = if l > x { l } else { x };
+            st(m, d, if h < low { h } else { low })
+        }};
+    }
+    match n {
+        Num::I8 => lim!(i8),
+        Num::I16 => lim!(i16),
+        Num::I32 => lim!(i32),
+        Num::I64 => lim!(i64),
+        Num::U8 | Num::B => lim!(u8),
+        Num::U16 => lim!(u16),
+        Num::U32 => lim!(u32),
+        Num::U64 => lim!(u64),
+        Num::F32 => lim!(f32),
+        Num::F64 => lim!(f64),
+    }
+}
+
+/// ABS: integers wrap (`ABS(INT#-32768)` is -32768), reals clear the sign.
+fn abs(m: &mut [u8], d: usize, a: usize, n: Num) -> Result<(), Trap> {
+    match n {
+        Num::I8 => st(m, d, ld::<i8>(m, a)?.wrapping_abs()),
+        Num::I16 => st(m, d, ld::<i16>(m, a)?.wrapping_abs()),
+        Num::I32 => st(m, d, ld::<i32>(m, a)?.wrapping_abs()),
+        Num::I64 => st(m, d, ld::<i64>(m, a)?.wrapping_abs()),
+        Num::F32 => st(m, d, ld::<f32>(m, a)?.abs()),
+        Num::F64 => st(m, d, ld::<f64>(m, a)?.abs()),
+        Num::U8 | Num::B => st(m, d, ld::<u8>(m, a)?),
+        Num::U16 => st(m, d, ld::<u16>(m, a)?),
+        Num::U32 => st(m, d, ld::<u32>(m, a)?),
+        Num::U64 => st(m, d, ld::<u64>(m, a)?),
+    }
+}
+
+/// SHL, SHR, ROL, ROR on the bit pattern of the value's width; a count at
+/// or above the width shifts everything out, rotations go modulo the width,
+/// a negative count goes the other way (as `stc_values`).
+fn shift(
+    m: &mut [u8],
+    d: usize,
+    a: usize,
+    n: usize,
+    op: u32,
+    num: Num,
+    nnum: Num,
+) -> Result<(), Trap> {
+    let w = match num {
+        Num::B => 1u32,
+        Num::F32 | Num::F64 => return Err(Trap::Invalid),
+        k => k.size() * 8,
+    };
+    let (v, _) = read_num(m, a, num)?;
+    let (count, _) = read_num(m, n, nnum)?;
+    if nnum.is_float() || op > 3 {
+        return Err(Trap::Invalid);
+    }
+    let mask: u64 = if w == 64 { u64::MAX } else { (1u64 << w) - 1 };
+    let u = (v as u64) & mask;
+    let left = (op == 0 || op == 2) == (count >= 0);
+    let out = if op < 2 {
+        let c = count.unsigned_abs();
+        if c >= w as u128 {
+            0
+        } else if left {
+            (u << c) & mask
+        } else {
+            u >> c
+        }
+    } else {
+        let k = count.rem_euclid(w as i128) as u32;
+        let k = if op == 2 { k } else { (w - k) % w };
+        if k == 0 {
+            u
+        } else {
+            ((u << k) | (u >> (w - k))) & mask
+        }
+    };
+    write_width(m, d, w.max(8), out)
+}
+
 fn run(image: &Image, m: &mut [u8], cpu: &mut Cpu) -> Result<(), Trap> {
     let code = &image.code[..];
-    loop {
-        if cpu.steps == 0 {
-            return Err(Trap::Fault(FaultKind::Watchdog));
+    let mut pc = cpu.pc;
+    let mut steps = cpu.steps;
+    let mut b = cpu.bases;
+    // The instruction being executed (where a fault is reported).
+    let mut cur;
+    let r = loop {
+        cur = pc;
+        if steps == 0 {
+            break Err(Trap::Fault(FaultKind::Watchdog));
         }
-        cpu.steps -= 1;
-        let Some(&ins) = code.get(cpu.pc) else {
-            return Err(Trap::Invalid);
+        steps -= 1;
+        let Some(&ins) = code.get(pc) else {
+            break Err(Trap::Invalid);
         };
-        cpu.pc += 1;
+        pc += 1;
         use Instr as I;
         match ins {
             I::Nop {} => {}
-            I::Mov1 { d, a } => un!(m, cpu, u8, d, a, |x| x),
-            I::Mov2 { d, a } => un!(m, cpu, u16, d, a, |x| x),
-            I::Mov4 { d, a } => un!(m, cpu, u32, d, a, |x| x),
-            I::Mov8 { d, a } => un!(m, cpu, u64, d, a, |x| x),
-            I::Copy { d, a, len } => {
-                copy(m, addr(&cpu.bases, d), addr(&cpu.bases, a), len as usize)?
-            }
+            I::Mov1 { d, a } => un!(m, b, u8, d, a, |x| x),
+            I::Mov2 { d, a } => un!(m, b, u16, d, a, |x| x),
+            I::Mov4 { d, a } => un!(m, b, u32, d, a, |x| x),
+            I::Mov8 { d, a } => un!(m, b, u64, d, a, |x| x),
+            I::Copy { d, a, len } => tr!(copy(m, addr(&b, d), addr(&b, a), len as usize)),
             I::StrCopy { d, a, cap, unit } => {
-                let (da, sa) = (addr(&cpu.bases, d), addr(&cpu.bases, a));
-                let len = (ld::<u16>(m, sa)? as u32).min(cap);
-                copy(m, da + 2, sa + 2, (len * unit) as usize)?;
-                st::<u16>(m, da, len as u16)?;
+                let (da, sa) = (addr(&b, d), addr(&b, a));
+                let len = (tr!(ld::<u16>(m, sa)) as u32).min(cap);
+                tr!(copy(m, da + 2, sa + 2, (len * unit) as usize));
+                tr!(st::<u16>(m, da, len as u16));
             }
-            I::Add8 { d, a, b } => bin!(m, cpu, u8, d, a, b, |x, y| x.wrapping_add(y)),
-            I::Add16 { d, a, b } => bin!(m, cpu, u16, d, a, b, |x, y| x.wrapping_add(y)),
-            I::Add32 { d, a, b } => bin!(m, cpu, u32, d, a, b, |x, y| x.wrapping_add(y)),
-            I::Add64 { d, a, b } => bin!(m, cpu, u64, d, a, b, |x, y| x.wrapping_add(y)),
-            I::Sub8 { d, a, b } => bin!(m, cpu, u8, d, a, b, |x, y| x.wrapping_sub(y)),
-            I::Sub16 { d, a, b } => bin!(m, cpu, u16, d, a, b, |x, y| x.wrapping_sub(y)),
-            I::Sub32 { d, a, b } => bin!(m, cpu, u32, d, a, b, |x, y| x.wrapping_sub(y)),
-            I::Sub64 { d, a, b } => bin!(m, cpu, u64, d, a, b, |x, y| x.wrapping_sub(y)),
-            I::Mul8 { d, a, b } => bin!(m, cpu, u8, d, a, b, |x, y| x.wrapping_mul(y)),
-            I::Mul16 { d, a, b } => bin!(m, cpu, u16, d, a, b, |x, y| x.wrapping_mul(y)),
-            I::Mul32 { d, a, b } => bin!(m, cpu, u32, d, a, b, |x, y| x.wrapping_mul(y)),
-            I::Mul64 { d, a, b } => bin!(m, cpu, u64, d, a, b, |x, y| x.wrapping_mul(y)),
-            I::Neg8 { d, a } => un!(m, cpu, u8, d, a, |x| x.wrapping_neg()),
-            I::Neg16 { d, a } => un!(m, cpu, u16, d, a, |x| x.wrapping_neg()),
-            I::Neg32 { d, a } => un!(m, cpu, u32, d, a, |x| x.wrapping_neg()),
-            I::Neg64 { d, a } => un!(m, cpu, u64, d, a, |x| x.wrapping_neg()),
-            I::DivI8 { d, a, b } => div!(m, cpu, i8, d, a, b, wrapping_div),
-            I::DivI16 { d, a, b } => div!(m, cpu, i16, d, a, b, wrapping_div),
-            I::DivI32 { d, a, b } => div!(m, cpu, i32, d, a, b, wrapping_div),
-            I::DivI64 { d, a, b } => div!(m, cpu, i64, d, a, b, wrapping_div),
-            I::DivU8 { d, a, b } => div!(m, cpu, u8, d, a, b, wrapping_div),
-            I::DivU16 { d, a, b } => div!(m, cpu, u16, d, a, b, wrapping_div),
-            I::DivU32 { d, a, b } => div!(m, cpu, u32, d, a, b, wrapping_div),
-            I::DivU64 { d, a, b } => div!(m, cpu, u64, d, a, b, wrapping_div),
-            I::ModI8 { d, a, b } => div!(m, cpu, i8, d, a, b, wrapping_rem),
-            I::ModI16 { d, a, b } => div!(m, cpu, i16, d, a, b, wrapping_rem),
-            I::ModI32 { d, a, b } => div!(m, cpu, i32, d, a, b, wrapping_rem),
-            I::ModI64 { d, a, b } => div!(m, cpu, i64, d, a, b, wrapping_rem),
-            I::ModU8 { d, a, b } => div!(m, cpu, u8, d, a, b, wrapping_rem),
-            I::ModU16 { d, a, b } => div!(m, cpu, u16, d, a, b, wrapping_rem),
-            I::ModU32 { d, a, b } => div!(m, cpu, u32, d, a, b, wrapping_rem),
-            I::ModU64 { d, a, b } => div!(m, cpu, u64, d, a, b, wrapping_rem),
-            I::AddF32 { d, a, b } => bin!(m, cpu, f32, d, a, b, |x, y| x + y),
-            I::AddF64 { d, a, b } => bin!(m, cpu, f64, d, a, b, |x, y| x + y),
-            I::SubF32 { d, a, b } => bin!(m, cpu, f32, d, a, b, |x, y| x - y),
-            I::SubF64 { d, a, b } => bin!(m, cpu, f64, d, a, b, |x, y| x - y),
-            I::MulF32 { d, a, b } => bin!(m, cpu, f32, d, a, b, |x, y| x * y),
-            I::MulF64 { d, a, b } => bin!(m, cpu, f64, d, a, b, |x, y| x * y),
-            I::DivF32 { d, a, b } => bin!(m, cpu, f32, d, a, b, |x, y| x / y),
-            I::DivF64 { d, a, b } => bin!(m, cpu, f64, d, a, b, |x, y| x / y),
-            I::NegF32 { d, a } => un!(m, cpu, f32, d, a, |x| -x),
-            I::NegF64 { d, a } => un!(m, cpu, f64, d, a, |x| -x),
-            I::Eq8 { d, a, b } => cmp!(m, cpu, u8, d, a, b, |x, y| x == y),
-            I::Eq16 { d, a, b } => cmp!(m, cpu, u16, d, a, b, |x, y| x == y),
-            I::Eq32 { d, a, b } => cmp!(m, cpu, u32, d, a, b, |x, y| x == y),
-            I::Eq64 { d, a, b } => cmp!(m, cpu, u64, d, a, b, |x, y| x == y),
-            I::EqF32 { d, a, b } => cmp!(m, cpu, f32, d, a, b, |x, y| x == y),
-            I::EqF64 { d, a, b } => cmp!(m, cpu, f64, d, a, b, |x, y| x == y),
-            I::Ne8 { d, a, b } => cmp!(m, cpu, u8, d, a, b, |x, y| x != y),
-            I::Ne16 { d, a, b } => cmp!(m, cpu, u16, d, a, b, |x, y| x != y),
-            I::Ne32 { d, a, b } => cmp!(m, cpu, u32, d, a, b, |x, y| x != y),
-            I::Ne64 { d, a, b } => cmp!(m, cpu, u64, d, a, b, |x, y| x != y),
-            I::NeF32 { d, a, b } => cmp!(m, cpu, f32, d, a, b, |x, y| x != y),
-            I::NeF64 { d, a, b } => cmp!(m, cpu, f64, d, a, b, |x, y| x != y),
-            I::LtI8 { d, a, b } => cmp!(m, cpu, i8, d, a, b, |x, y| x < y),
-            I::LtI16 { d, a, b } => cmp!(m, cpu, i16, d, a, b, |x, y| x < y),
-            I::LtI32 { d, a, b } => cmp!(m, cpu, i32, d, a, b, |x, y| x < y),
-            I::LtI64 { d, a, b } => cmp!(m, cpu, i64, d, a, b, |x, y| x < y),
-            I::LtU8 { d, a, b } => cmp!(m, cpu, u8, d, a, b, |x, y| x < y),
-            I::LtU16 { d, a, b } => cmp!(m, cpu, u16, d, a, b, |x, y| x < y),
-            I::LtU32 { d, a, b } => cmp!(m, cpu, u32, d, a, b, |x, y| x < y),
-            I::LtU64 { d, a, b } => cmp!(m, cpu, u64, d, a, b, |x, y| x < y),
-            I::LtF32 { d, a, b } => cmp!(m, cpu, f32, d, a, b, |x, y| x < y),
-            I::LtF64 { d, a, b } => cmp!(m, cpu, f64, d, a, b, |x, y| x < y),
-            I::LeI8 { d, a, b } => cmp!(m, cpu, i8, d, a, b, |x, y| x <= y),
-            I::LeI16 { d, a, b } => cmp!(m, cpu, i16, d, a, b, |x, y| x <= y),
-            I::LeI32 { d, a, b } => cmp!(m, cpu, i32, d, a, b, |x, y| x <= y),
-            I::LeI64 { d, a, b } => cmp!(m, cpu, i64, d, a, b, |x, y| x <= y),
-            I::LeU8 { d, a, b } => cmp!(m, cpu, u8, d, a, b, |x, y| x <= y),
-            I::LeU16 { d, a, b } => cmp!(m, cpu, u16, d, a, b, |x, y| x <= y),
-            I::LeU32 { d, a, b } => cmp!(m, cpu, u32, d, a, b, |x, y| x <= y),
-            I::LeU64 { d, a, b } => cmp!(m, cpu, u64, d, a, b, |x, y| x <= y),
-            I::LeF32 { d, a, b } => cmp!(m, cpu, f32, d, a, b, |x, y| x <= y),
-            I::LeF64 { d, a, b } => cmp!(m, cpu, f64, d, a, b, |x, y| x <= y),
-            I::And8 { d, a, b } => bin!(m, cpu, u8, d, a, b, |x, y| x & y),
-            I::And16 { d, a, b } => bin!(m, cpu, u16, d, a, b, |x, y| x & y),
-            I::And32 { d, a, b } => bin!(m, cpu, u32, d, a, b, |x, y| x & y),
-            I::And64 { d, a, b } => bin!(m, cpu, u64, d, a, b, |x, y| x & y),
-            I::Or8 { d, a, b } => bin!(m, cpu, u8, d, a, b, |x, y| x | y),
-            I::Or16 { d, a, b } => bin!(m, cpu, u16, d, a, b, |x, y| x | y),
-            I::Or32 { d, a, b } => bin!(m, cpu, u32, d, a, b, |x, y| x | y),
-            I::Or64 { d, a, b } => bin!(m, cpu, u64, d, a, b, |x, y| x | y),
-            I::Xor8 { d, a, b } => bin!(m, cpu, u8, d, a, b, |x, y| x ^ y),
-            I::Xor16 { d, a, b } => bin!(m, cpu, u16, d, a, b, |x, y| x ^ y),
-            I::Xor32 { d, a, b } => bin!(m, cpu, u32, d, a, b, |x, y| x ^ y),
-            I::Xor64 { d, a, b } => bin!(m, cpu, u64, d, a, b, |x, y| x ^ y),
-            I::Not8 { d, a } => un!(m, cpu, u8, d, a, |x| !x),
-            I::Not16 { d, a } => un!(m, cpu, u16, d, a, |x| !x),
-            I::Not32 { d, a } => un!(m, cpu, u32, d, a, |x| !x),
-            I::Not64 { d, a } => un!(m, cpu, u64, d, a, |x| !x),
-            I::NotB { d, a } => un!(m, cpu, u8, d, a, |x| (x == 0) as u8),
+            I::Add8 { d, a, b: c } => bin!(m, b, u8, d, a, c, |x, y| x.wrapping_add(y)),
+            I::Add16 { d, a, b: c } => bin!(m, b, u16, d, a, c, |x, y| x.wrapping_add(y)),
+            I::Add32 { d, a, b: c } => bin!(m, b, u32, d, a, c, |x, y| x.wrapping_add(y)),
+            I::Add64 { d, a, b: c } => bin!(m, b, u64, d, a, c, |x, y| x.wrapping_add(y)),
+            I::Sub8 { d, a, b: c } => bin!(m, b, u8, d, a, c, |x, y| x.wrapping_sub(y)),
+            I::Sub16 { d, a, b: c } => bin!(m, b, u16, d, a, c, |x, y| x.wrapping_sub(y)),
+            I::Sub32 { d, a, b: c } => bin!(m, b, u32, d, a, c, |x, y| x.wrapping_sub(y)),
+            I::Sub64 { d, a, b: c } => bin!(m, b, u64, d, a, c, |x, y| x.wrapping_sub(y)),
+            I::Mul8 { d, a, b: c } => bin!(m, b, u8, d, a, c, |x, y| x.wrapping_mul(y)),
+            I::Mul16 { d, a, b: c } => bin!(m, b, u16, d, a, c, |x, y| x.wrapping_mul(y)),
+            I::Mul32 { d, a, b: c } => bin!(m, b, u32, d, a, c, |x, y| x.wrapping_mul(y)),
+            I::Mul64 { d, a, b: c } => bin!(m, b, u64, d, a, c, |x, y| x.wrapping_mul(y)),
+            I::Neg8 { d, a } => un!(m, b, u8, d, a, |x| x.wrapping_neg()),
+            I::Neg16 { d, a } => un!(m, b, u16, d, a, |x| x.wrapping_neg()),
+            I::Neg32 { d, a } => un!(m, b, u32, d, a, |x| x.wrapping_neg()),
+            I::Neg64 { d, a } => un!(m, b, u64, d, a, |x| x.wrapping_neg()),
+            I::DivI8 { d, a, b: c } => div!(m, b, i8, d, a, c, wrapping_div),
+            I::DivI16 { d, a, b: c } => div!(m, b, i16, d, a, c, wrapping_div),
+            I::DivI32 { d, a, b: c } => div!(m, b, i32, d, a, c, wrapping_div),
+            I::DivI64 { d, a, b: c } => div!(m, b, i64, d, a, c, wrapping_div),
+            I::DivU8 { d, a, b: c } => div!(m, b, u8, d, a, c, wrapping_div),
+            I::DivU16 { d, a, b: c } => div!(m, b, u16, d, a, c, wrapping_div),
+            I::DivU32 { d, a, b: c } => div!(m, b, u32, d, a, c, wrapping_div),
+            I::DivU64 { d, a, b: c } => div!(m, b, u64, d, a, c, wrapping_div),
+            I::ModI8 { d, a, b: c } => div!(m, b, i8, d, a, c, wrapping_rem),
+            I::ModI16 { d, a, b: c } => div!(m, b, i16, d, a, c, wrapping_rem),
+            I::ModI32 { d, a, b: c } => div!(m, b, i32, d, a, c, wrapping_rem),
+            I::ModI64 { d, a, b: c } => div!(m, b, i64, d, a, c, wrapping_rem),
+            I::ModU8 { d, a, b: c } => div!(m, b, u8, d, a, c, wrapping_rem),
+            I::ModU16 { d, a, b: c } => div!(m, b, u16, d, a, c, wrapping_rem),
+            I::ModU32 { d, a, b: c } => div!(m, b, u32, d, a, c, wrapping_rem),
+            I::ModU64 { d, a, b: c } => div!(m, b, u64, d, a, c, wrapping_rem),
+            I::AddF32 { d, a, b: c } => bin!(m, b, f32, d, a, c, |x, y| x + y),
+            I::AddF64 { d, a, b: c } => bin!(m, b, f64, d, a, c, |x, y| x + y),
+            I::SubF32 { d, a, b: c } => bin!(m, b, f32, d, a, c, |x, y| x - y),
+            I::SubF64 { d, a, b: c } => bin!(m, b, f64, d, a, c, |x, y| x - y),
+            I::MulF32 { d, a, b: c } => bin!(m, b, f32, d, a, c, |x, y| x * y),
+            I::MulF64 { d, a, b: c } => bin!(m, b, f64, d, a, c, |x, y| x * y),
+            I::DivF32 { d, a, b: c } => bin!(m, b, f32, d, a, c, |x, y| x / y),
+            I::DivF64 { d, a, b: c } => bin!(m, b, f64, d, a, c, |x, y| x / y),
+            I::NegF32 { d, a } => un!(m, b, f32, d, a, |x| -x),
+            I::NegF64 { d, a } => un!(m, b, f64, d, a, |x| -x),
+            I::Eq8 { d, a, b: c } => cmp!(m, b, u8, d, a, c, |x, y| x == y),
+            I::Eq16 { d, a, b: c } => cmp!(m, b, u16, d, a, c, |x, y| x == y),
+            I::Eq32 { d, a, b: c } => cmp!(m, b, u32, d, a, c, |x, y| x == y),
+            I::Eq64 { d, a, b: c } => cmp!(m, b, u64, d, a, c, |x, y| x == y),
+            I::EqF32 { d, a, b: c } => cmp!(m, b, f32, d, a, c, |x, y| x == y),
+            I::EqF64 { d, a, b: c } => cmp!(m, b, f64, d, a, c, |x, y| x == y),
+            I::Ne8 { d, a, b: c } => cmp!(m, b, u8, d, a, c, |x, y| x != y),
+            I::Ne16 { d, a, b: c } => cmp!(m, b, u16, d, a, c, |x, y| x != y),
+            I::Ne32 { d, a, b: c } => cmp!(m, b, u32, d, a, c, |x, y| x != y),
+            I::Ne64 { d, a, b: c } => cmp!(m, b, u64, d, a, c, |x, y| x != y),
+            I::NeF32 { d, a, b: c } => cmp!(m, b, f32, d, a, c, |x, y| x != y),
+            I::NeF64 { d, a, b: c } => cmp!(m, b, f64, d, a, c, |x, y| x != y),
+            I::LtI8 { d, a, b: c } => cmp!(m, b, i8, d, a, c, |x, y| x < y),
+            I::LtI16 { d, a, b: c } => cmp!(m, b, i16, d, a, c, |x, y| x < y),
+            I::LtI32 { d, a, b: c } => cmp!(m, b, i32, d, a, c, |x, y| x < y),
+            I::LtI64 { d, a, b: c } => cmp!(m, b, i64, d, a, c, |x, y| x < y),
+            I::LtU8 { d, a, b: c } => cmp!(m, b, u8, d, a, c, |x, y| x < y),
+            I::LtU16 { d, a, b: c } => cmp!(m, b, u16, d, a, c, |x, y| x < y),
+            I::LtU32 { d, a, b: c } => cmp!(m, b, u32, d, a, c, |x, y| x < y),
+            I::LtU64 { d, a, b: c } => cmp!(m, b, u64, d, a, c, |x, y| x < y),
+            I::LtF32 { d, a, b: c } => cmp!(m, b, f32, d, a, c, |x, y| x < y),
+            I::LtF64 { d, a, b: c } => cmp!(m, b, f64, d, a, c, |x, y| x < y),
+            I::LeI8 { d, a, b: c } => cmp!(m, b, i8, d, a, c, |x, y| x <= y),
+            I::LeI16 { d, a, b: c } => cmp!(m, b, i16, d, a, c, |x, y| x <= y),
+            I::LeI32 { d, a, b: c } => cmp!(m, b, i32, d, a, c, |x, y| x <= y),
+            I::LeI64 { d, a, b: c } => cmp!(m, b, i64, d, a, c, |x, y| x <= y),
+            I::LeU8 { d, a, b: c } => cmp!(m, b, u8, d, a, c, |x, y| x <= y),
+            I::LeU16 { d, a, b: c } => cmp!(m, b, u16, d, a, c, |x, y| x <= y),
+            I::LeU32 { d, a, b: c } => cmp!(m, b, u32, d, a, c, |x, y| x <= y),
+            I::LeU64 { d, a, b: c } => cmp!(m, b, u64, d, a, c, |x, y| x <= y),
+            I::LeF32 { d, a, b: c } => cmp!(m, b, f32, d, a, c, |x, y| x <= y),
+            I::LeF64 { d, a, b: c } => cmp!(m, b, f64, d, a, c, |x, y| x <= y),
+            I::And8 { d, a, b: c } => bin!(m, b, u8, d, a, c, |x, y| x & y),
+            I::And16 { d, a, b: c } => bin!(m, b, u16, d, a, c, |x, y| x & y),
+            I::And32 { d, a, b: c } => bin!(m, b, u32, d, a, c, |x, y| x & y),
+            I::And64 { d, a, b: c } => bin!(m, b, u64, d, a, c, |x, y| x & y),
+            I::Or8 { d, a, b: c } => bin!(m, b, u8, d, a, c, |x, y| x | y),
+            I::Or16 { d, a, b: c } => bin!(m, b, u16, d, a, c, |x, y| x | y),
+            I::Or32 { d, a, b: c } => bin!(m, b, u32, d, a, c, |x, y| x | y),
+            I::Or64 { d, a, b: c } => bin!(m, b, u64, d, a, c, |x, y| x | y),
+            I::Xor8 { d, a, b: c } => bin!(m, b, u8, d, a, c, |x, y| x ^ y),
+            I::Xor16 { d, a, b: c } => bin!(m, b, u16, d, a, c, |x, y| x ^ y),
+            I::Xor32 { d, a, b: c } => bin!(m, b, u32, d, a, c, |x, y| x ^ y),
+            I::Xor64 { d, a, b: c } => bin!(m, b, u64, d, a, c, |x, y| x ^ y),
+            I::Not8 { d, a } => un!(m, b, u8, d, a, |x| !x),
+            I::Not16 { d, a } => un!(m, b, u16, d, a, |x| !x),
+            I::Not32 { d, a } => un!(m, b, u32, d, a, |x| !x),
+            I::Not64 { d, a } => un!(m, b, u64, d, a, |x| !x),
+            I::NotB { d, a } => un!(m, b, u8, d, a, |x| (x == 0) as u8),
             I::Cvt { d, a, from, to } => {
                 let (Some(f), Some(t)) = (Num::from_code(from), Num::from_code(to)) else {
-                    return Err(Trap::Invalid);
+                    break Err(Trap::Invalid);
                 };
-                convert(m, addr(&cpu.bases, d), addr(&cpu.bases, a), f, t)?;
+                tr!(convert(m, addr(&b, d), addr(&b, a), f, t));
             }
             I::Check { a, lo, hi, num } => {
-                let n = Num::from_code(num).ok_or(Trap::Invalid)?;
-                let (v, _) = read_num(m, addr(&cpu.bases, a), n)?;
-                let (l, _) = read_num(m, addr(&cpu.bases, lo), n)?;
-                let (h, _) = read_num(m, addr(&cpu.bases, hi), n)?;
+                let n = tr!(Num::from_code(num).ok_or(Trap::Invalid));
+                let (v, _) = tr!(read_num(m, addr(&b, a), n));
+                let (l, _) = tr!(read_num(m, addr(&b, lo), n));
+                let (h, _) = tr!(read_num(m, addr(&b, hi), n));
                 if v < l || v > h {
-                    return Err(Trap::Fault(FaultKind::SubrangeViolation));
+                    break Err(Trap::Fault(FaultKind::SubrangeViolation));
                 }
             }
             I::GetPart {
@@ -391,7 +619,7 @@ fn run(image: &Image, m: &mut [u8], cpu: &mut Cpu) -> Result<(), Trap> {
                 part,
                 index,
             } => {
-                let w = read_width(m, addr(&cpu.bases, a), width)?;
+                let w = tr!(read_width(m, addr(&b, a), width));
                 let mask = if part >= 64 {
                     u64::MAX
                 } else {
@@ -399,7 +627,7 @@ fn run(image: &Image, m: &mut [u8], cpu: &mut Cpu) -> Result<(), Trap> {
                 };
                 let shift = index.saturating_mul(part);
                 let v = if shift >= 64 { 0 } else { (w >> shift) & mask };
-                write_width(m, addr(&cpu.bases, d), part.max(8), v)?;
+                tr!(write_width(m, addr(&b, d), part.max(8), v));
             }
             I::SetPart {
                 d,
@@ -408,9 +636,9 @@ fn run(image: &Image, m: &mut [u8], cpu: &mut Cpu) -> Result<(), Trap> {
                 part,
                 index,
             } => {
-                let da = addr(&cpu.bases, d);
-                let w = read_width(m, da, width)?;
-                let v = read_width(m, addr(&cpu.bases, a), part.max(8))?;
+                let da = addr(&b, d);
+                let w = tr!(read_width(m, da, width));
+                let v = tr!(read_width(m, addr(&b, a), part.max(8)));
                 let mask = if part >= 64 {
                     u64::MAX
                 } else {
@@ -419,107 +647,244 @@ fn run(image: &Image, m: &mut [u8], cpu: &mut Cpu) -> Result<(), Trap> {
                 let shift = index.saturating_mul(part);
                 if shift < 64 {
                     let nw = (w & !(mask << shift)) | ((v & mask) << shift);
-                    write_width(m, da, width, nw)?;
+                    tr!(write_width(m, da, width, nw));
                 }
             }
-            I::Lea { d, a } => st::<u32>(m, addr(&cpu.bases, d), addr(&cpu.bases, a) as u32)?,
-            I::Index {
-                d,
-                a,
-                idx,
-                lo,
-                count,
-                stride,
-            } => {
-                let base = ld::<u32>(m, addr(&cpu.bases, a))? as u64;
-                let i = ld::<i64>(m, addr(&cpu.bases, idx))? as i128;
-                let l = ld::<i64>(m, addr(&cpu.bases, lo))? as i128;
-                let k = i - l;
-                if k < 0 || k >= count as i128 {
-                    return Err(Trap::Fault(FaultKind::IndexOutOfBounds));
-                }
-                let p = base + k as u64 * stride as u64;
-                st::<u32>(
-                    m,
-                    addr(&cpu.bases, d),
-                    u32::try_from(p).map_err(|_| Trap::Invalid)?,
-                )?;
-            }
+            I::Lea { d, a } => tr!(st::<u32>(m, addr(&b, d), addr(&b, a) as u32)),
             I::Load { d, p, off, len } => {
-                let src = ld::<u32>(m, addr(&cpu.bases, p))? as usize + off as usize;
-                copy(m, addr(&cpu.bases, d), src, len as usize)?;
+                let src = tr!(ld::<u32>(m, addr(&b, p))) as usize + off as usize;
+                tr!(copy(m, addr(&b, d), src, len as usize));
             }
             I::Store { p, a, off, len } => {
-                let dst = ld::<u32>(m, addr(&cpu.bases, p))? as usize + off as usize;
-                copy(m, dst, addr(&cpu.bases, a), len as usize)?;
+                let dst = tr!(ld::<u32>(m, addr(&b, p))) as usize + off as usize;
+                tr!(copy(m, dst, addr(&b, a), len as usize));
             }
-            I::Jmp { t } => cpu.pc = t.0 as usize,
+            I::Jmp { t } => pc = t.0 as usize,
             I::Jz { c, t } => {
-                if ld::<u8>(m, addr(&cpu.bases, c))? == 0 {
-                    cpu.pc = t.0 as usize;
+                if tr!(ld::<u8>(m, addr(&b, c))) == 0 {
+                    pc = t.0 as usize;
                 }
             }
             I::Jnz { c, t } => {
-                if ld::<u8>(m, addr(&cpu.bases, c))? != 0 {
-                    cpu.pc = t.0 as usize;
+                if tr!(ld::<u8>(m, addr(&b, c))) != 0 {
+                    pc = t.0 as usize;
                 }
             }
-            I::JltI32 { a, b, t } => {
-                let x: i32 = ld(m, addr(&cpu.bases, a))?;
-                let y: i32 = ld(m, addr(&cpu.bases, b))?;
-                if x < y {
-                    cpu.pc = t.0 as usize;
-                }
+            I::JltI8 { a, b: c, t } => jcmp!(m, b, pc, i8, a, c, t, |x, y| x < y),
+            I::JltI16 { a, b: c, t } => jcmp!(m, b, pc, i16, a, c, t, |x, y| x < y),
+            I::JltI32 { a, b: c, t } => jcmp!(m, b, pc, i32, a, c, t, |x, y| x < y),
+            I::JltI64 { a, b: c, t } => jcmp!(m, b, pc, i64, a, c, t, |x, y| x < y),
+            I::JltU8 { a, b: c, t } => jcmp!(m, b, pc, u8, a, c, t, |x, y| x < y),
+            I::JltU16 { a, b: c, t } => jcmp!(m, b, pc, u16, a, c, t, |x, y| x < y),
+            I::JltU32 { a, b: c, t } => jcmp!(m, b, pc, u32, a, c, t, |x, y| x < y),
+            I::JltU64 { a, b: c, t } => jcmp!(m, b, pc, u64, a, c, t, |x, y| x < y),
+            I::JltF32 { a, b: c, t } => jcmp!(m, b, pc, f32, a, c, t, |x, y| x < y),
+            I::JltF64 { a, b: c, t } => jcmp!(m, b, pc, f64, a, c, t, |x, y| x < y),
+            I::JleI8 { a, b: c, t } => jcmp!(m, b, pc, i8, a, c, t, |x, y| x <= y),
+            I::JleI16 { a, b: c, t } => jcmp!(m, b, pc, i16, a, c, t, |x, y| x <= y),
+            I::JleI32 { a, b: c, t } => jcmp!(m, b, pc, i32, a, c, t, |x, y| x <= y),
+            I::JleI64 { a, b: c, t } => jcmp!(m, b, pc, i64, a, c, t, |x, y| x <= y),
+            I::JleU8 { a, b: c, t } => jcmp!(m, b, pc, u8, a, c, t, |x, y| x <= y),
+            I::JleU16 { a, b: c, t } => jcmp!(m, b, pc, u16, a, c, t, |x, y| x <= y),
+            I::JleU32 { a, b: c, t } => jcmp!(m, b, pc, u32, a, c, t, |x, y| x <= y),
+            I::JleU64 { a, b: c, t } => jcmp!(m, b, pc, u64, a, c, t, |x, y| x <= y),
+            I::JleF32 { a, b: c, t } => jcmp!(m, b, pc, f32, a, c, t, |x, y| x <= y),
+            I::JleF64 { a, b: c, t } => jcmp!(m, b, pc, f64, a, c, t, |x, y| x <= y),
+            I::Jeq8 { a, b: c, t } => jcmp!(m, b, pc, u8, a, c, t, |x, y| x == y),
+            I::Jeq16 { a, b: c, t } => jcmp!(m, b, pc, u16, a, c, t, |x, y| x == y),
+            I::Jeq32 { a, b: c, t } => jcmp!(m, b, pc, u32, a, c, t, |x, y| x == y),
+            I::Jeq64 { a, b: c, t } => jcmp!(m, b, pc, u64, a, c, t, |x, y| x == y),
+            I::JeqF32 { a, b: c, t } => jcmp!(m, b, pc, f32, a, c, t, |x, y| x == y),
+            I::JeqF64 { a, b: c, t } => jcmp!(m, b, pc, f64, a, c, t, |x, y| x == y),
+            I::Jne8 { a, b: c, t } => jcmp!(m, b, pc, u8, a, c, t, |x, y| x != y),
+            I::Jne16 { a, b: c, t } => jcmp!(m, b, pc, u16, a, c, t, |x, y| x != y),
+            I::Jne32 { a, b: c, t } => jcmp!(m, b, pc, u32, a, c, t, |x, y| x != y),
+            I::Jne64 { a, b: c, t } => jcmp!(m, b, pc, u64, a, c, t, |x, y| x != y),
+            I::JneF32 { a, b: c, t } => jcmp!(m, b, pc, f32, a, c, t, |x, y| x != y),
+            I::JneF64 { a, b: c, t } => jcmp!(m, b, pc, f64, a, c, t, |x, y| x != y),
+            I::JnltF32 { a, b: c, t } => jcmp!(m, b, pc, f32, a, c, t, |x, y| x.partial_cmp(&y)
+                != Some(Less)),
+            I::JnltF64 { a, b: c, t } => jcmp!(m, b, pc, f64, a, c, t, |x, y| x.partial_cmp(&y)
+                != Some(Less)),
+            I::JnleF32 { a, b: c, t } => jcmp!(m, b, pc, f32, a, c, t, |x, y| !matches!(
+                x.partial_cmp(&y),
+                Some(Less | Equal)
+            )),
+            I::JnleF64 { a, b: c, t } => jcmp!(m, b, pc, f64, a, c, t, |x, y| !matches!(
+                x.partial_cmp(&y),
+                Some(Less | Equal)
+            )),
+            I::ForUpI8 { v, s, e, t } => forstep!(m, b, pc, i8, v, s, e, t, true),
+            I::ForUpI16 { v, s, e, t } => forstep!(m, b, pc, i16, v, s, e, t, true),
+            I::ForUpI32 { v, s, e, t } => forstep!(m, b, pc, i32, v, s, e, t, true),
+            I::ForUpI64 { v, s, e, t } => forstep!(m, b, pc, i64, v, s, e, t, true),
+            I::ForUpU8 { v, s, e, t } => forstep!(m, b, pc, u8, v, s, e, t, true),
+            I::ForUpU16 { v, s, e, t } => forstep!(m, b, pc, u16, v, s, e, t, true),
+            I::ForUpU32 { v, s, e, t } => forstep!(m, b, pc, u32, v, s, e, t, true),
+            I::ForUpU64 { v, s, e, t } => forstep!(m, b, pc, u64, v, s, e, t, true),
+            I::ForDnI8 { v, s, e, t } => forstep!(m, b, pc, i8, v, s, e, t, false),
+            I::ForDnI16 { v, s, e, t } => forstep!(m, b, pc, i16, v, s, e, t, false),
+            I::ForDnI32 { v, s, e, t } => forstep!(m, b, pc, i32, v, s, e, t, false),
+            I::ForDnI64 { v, s, e, t } => forstep!(m, b, pc, i64, v, s, e, t, false),
+            I::ForDnU8 { v, s, e, t } => forstep!(m, b, pc, u8, v, s, e, t, false),
+            I::ForDnU16 { v, s, e, t } => forstep!(m, b, pc, u16, v, s, e, t, false),
+            I::ForDnU32 { v, s, e, t } => forstep!(m, b, pc, u32, v, s, e, t, false),
+            I::ForDnU64 { v, s, e, t } => forstep!(m, b, pc, u64, v, s, e, t, false),
+            I::Elem { d, a, idx, desc } => {
+                let at = tr!(elem_addr(m, image, addr(&b, a), addr(&b, idx), desc));
+                tr!(st::<u32>(m, addr(&b, d), at as u32));
+            }
+            I::ElemP { d, p, idx, desc } => {
+                let base = tr!(ld::<u32>(m, addr(&b, p))) as usize;
+                let at = tr!(elem_addr(m, image, base, addr(&b, idx), desc));
+                let at = tr!(u32::try_from(at).map_err(|_| Trap::Invalid));
+                tr!(st::<u32>(m, addr(&b, d), at));
+            }
+            I::LdElem1 { d, a, idx, desc } => ldelem!(m, b, image, u8, d, a, idx, desc),
+            I::LdElem2 { d, a, idx, desc } => ldelem!(m, b, image, u16, d, a, idx, desc),
+            I::LdElem4 { d, a, idx, desc } => ldelem!(m, b, image, u32, d, a, idx, desc),
+            I::LdElem8 { d, a, idx, desc } => ldelem!(m, b, image, u64, d, a, idx, desc),
+            I::StElem1 { a, idx, v, desc } => stelem!(m, b, image, u8, a, idx, v, desc),
+            I::StElem2 { a, idx, v, desc } => stelem!(m, b, image, u16, a, idx, v, desc),
+            I::StElem4 { a, idx, v, desc } => stelem!(m, b, image, u32, a, idx, v, desc),
+            I::StElem8 { a, idx, v, desc } => stelem!(m, b, image, u64, a, idx, v, desc),
+            I::Ld1 { d, p, off } => ldp!(m, b, u8, d, p, off),
+            I::Ld2 { d, p, off } => ldp!(m, b, u16, d, p, off),
+            I::Ld4 { d, p, off } => ldp!(m, b, u32, d, p, off),
+            I::Ld8 { d, p, off } => ldp!(m, b, u64, d, p, off),
+            I::St1 { p, a, off } => stp!(m, b, u8, p, a, off),
+            I::St2 { p, a, off } => stp!(m, b, u16, p, a, off),
+            I::St4 { p, a, off } => stp!(m, b, u32, p, a, off),
+            I::St8 { p, a, off } => stp!(m, b, u64, p, a, off),
+            I::Min { d, a, b: c, num } => {
+                let n = tr!(Num::from_code(num).ok_or(Trap::Invalid));
+                tr!(min_max(m, addr(&b, d), addr(&b, a), addr(&b, c), n, false));
+            }
+            I::Max { d, a, b: c, num } => {
+                let n = tr!(Num::from_code(num).ok_or(Trap::Invalid));
+                tr!(min_max(m, addr(&b, d), addr(&b, a), addr(&b, c), n, true));
+            }
+            I::Limit { d, lo, a, hi, num } => {
+                let n = tr!(Num::from_code(num).ok_or(Trap::Invalid));
+                tr!(limit(
+                    m,
+                    addr(&b, d),
+                    addr(&b, lo),
+                    addr(&b, a),
+                    addr(&b, hi),
+                    n
+                ));
+            }
+            I::Abs { d, a, num } => {
+                let n = tr!(Num::from_code(num).ok_or(Trap::Invalid));
+                tr!(abs(m, addr(&b, d), addr(&b, a), n));
+            }
+            I::Shift {
+                d,
+                a,
+                n,
+                op,
+                num,
+                nnum,
+            } => {
+                let (Some(k), Some(nk)) = (Num::from_code(num), Num::from_code(nnum)) else {
+                    break Err(Trap::Invalid);
+                };
+                tr!(shift(m, addr(&b, d), addr(&b, a), addr(&b, n), op, k, nk));
+            }
+            I::Sel { d, g, a, b: c, len } => {
+                let src = if tr!(ld::<u8>(m, addr(&b, g))) != 0 {
+                    c
+                } else {
+                    a
+                };
+                tr!(copy(m, addr(&b, d), addr(&b, src), len as usize));
             }
             I::CallFn { pou, frame } => {
-                let fp = cpu.bases[0].checked_add(frame).ok_or(Trap::Invalid)?;
-                call(image, m, cpu, pou, fp, cpu.bases[1])?;
+                let fp = tr!(b[0].checked_add(frame).ok_or(Trap::Invalid));
+                let this = b[1];
+                tr!(call(
+                    image,
+                    m,
+                    &mut cpu.calls,
+                    &mut pc,
+                    &mut b,
+                    pou,
+                    fp,
+                    this
+                ));
             }
             I::CallFb { pou, inst, frame } => {
-                let fp = cpu.bases[0].checked_add(frame).ok_or(Trap::Invalid)?;
-                let this = addr(&cpu.bases, inst) as u32;
-                call(image, m, cpu, pou, fp, this)?;
+                let fp = tr!(b[0].checked_add(frame).ok_or(Trap::Invalid));
+                let this = addr(&b, inst) as u32;
+                tr!(call(
+                    image,
+                    m,
+                    &mut cpu.calls,
+                    &mut pc,
+                    &mut b,
+                    pou,
+                    fp,
+                    this
+                ));
             }
             I::CallFbInd { pou, inst, frame } => {
-                let fp = cpu.bases[0].checked_add(frame).ok_or(Trap::Invalid)?;
-                let this = ld::<u32>(m, addr(&cpu.bases, inst))?;
-                call(image, m, cpu, pou, fp, this)?;
+                let fp = tr!(b[0].checked_add(frame).ok_or(Trap::Invalid));
+                let this = tr!(ld::<u32>(m, addr(&b, inst)));
+                tr!(call(
+                    image,
+                    m,
+                    &mut cpu.calls,
+                    &mut pc,
+                    &mut b,
+                    pou,
+                    fp,
+                    this
+                ));
             }
             I::Ret {} => match cpu.calls.pop() {
-                Some((pc, fp, this)) => {
-                    cpu.pc = pc;
-                    cpu.bases[0] = fp;
-                    cpu.bases[1] = this;
+                Some((rpc, fp, this)) => {
+                    pc = rpc;
+                    b[0] = fp;
+                    b[1] = this;
                 }
-                None => return Ok(()),
+                None => break Ok(()),
             },
             I::Std { call } => {
-                let c = image.calls.get(call as usize).ok_or(Trap::Invalid)?;
-                std_call(m, &cpu.bases, c)?;
+                let c = tr!(image.calls.get(call as usize).ok_or(Trap::Invalid));
+                tr!(std_call(m, &b, c));
             }
-            I::CurTime { d } => st::<i64>(m, addr(&cpu.bases, d), cpu.now)?,
-            I::Fault { kind } => return Err(Trap::Fault(fault_of_code(kind))),
+            I::CurTime { d } => tr!(st::<i64>(m, addr(&b, d), cpu.now)),
+            I::Fault { kind } => break Err(Trap::Fault(fault_of_code(kind))),
         }
-    }
+    };
+    cpu.pc = if r.is_err() { cur } else { pc };
+    cpu.steps = steps;
+    cpu.bases = b;
+    r
 }
 
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
 fn call(
     image: &Image,
     m: &mut [u8],
-    cpu: &mut Cpu,
+    calls: &mut Vec<(usize, u32, u32)>,
+    pc: &mut usize,
+    bases: &mut [u32; 4],
     pou: u32,
     fp: u32,
     this: u32,
 ) -> Result<(), Trap> {
-    if cpu.calls.len() >= MAX_CALL_DEPTH {
+    if calls.len() >= MAX_CALL_DEPTH {
         return Err(Trap::Invalid);
     }
     let entry = image.pous.get(pou as usize).ok_or(Trap::Invalid)?.entry;
     enter_frame(image, m, pou, fp)?;
-    cpu.calls.push((cpu.pc, cpu.bases[0], cpu.bases[1]));
-    cpu.bases[0] = fp;
-    cpu.bases[1] = this;
-    cpu.pc = entry as usize;
+    calls.push((*pc, bases[0], bases[1]));
+    bases[0] = fp;
+    bases[1] = this;
+    *pc = entry as usize;
     Ok(())
 }
 

@@ -59,14 +59,19 @@ impl Machine {
         &self.image
     }
 
+    /// The whole memory: data area, constants, stack.
+    pub fn memory(&self) -> &[u8] {
+        &self.mem
+    }
+
     /// Runs the body of a program instance once, at task time `now_ns`,
-    /// with at most `max_steps` instructions.
+    /// with at most `max_steps` instructions; returns the instructions used.
     pub fn run_program(
         &mut self,
         inst: &ProgramInst,
         now_ns: i64,
         max_steps: u64,
-    ) -> Result<(), VmFault> {
+    ) -> Result<u64, VmFault> {
         let pou = self
             .image
             .pous
@@ -98,9 +103,10 @@ impl Machine {
 
     /// A scalar or string value (enumerations read as their integer).
     pub fn read_value(&self, off: u32, ty: TypeRef) -> Option<Value> {
+        if let Some(e) = self.image.scalar_of(ty) {
+            return read_scalar(&self.mem, off, e);
+        }
         match self.image.types.get(ty as usize)? {
-            TypeDesc::Scalar(e) => read_scalar(&self.mem, off, *e),
-            TypeDesc::Enum { base, .. } => read_scalar(&self.mem, off, *base),
             TypeDesc::String { wide, cap } => read_string(&self.mem, off, *wide, *cap),
             _ => None,
         }
@@ -108,9 +114,10 @@ impl Machine {
 
     /// Writes a scalar or string value (strings truncated to capacity).
     pub fn write_value(&mut self, off: u32, ty: TypeRef, v: &Value) -> bool {
+        if let Some(e) = self.image.scalar_of(ty) {
+            return write_scalar(&mut self.mem, off, e, v);
+        }
         match self.image.types.get(ty as usize).cloned() {
-            Some(TypeDesc::Scalar(e)) => write_scalar(&mut self.mem, off, e, v),
-            Some(TypeDesc::Enum { base, .. }) => write_scalar(&mut self.mem, off, base, v),
             Some(TypeDesc::String { wide, cap }) => write_string(&mut self.mem, off, wide, cap, v),
             _ => false,
         }

@@ -35,6 +35,13 @@ pub fn verify(img: &Image) -> Result<(), String> {
             TypeDesc::Instance { pou } if *pou as usize >= img.pous.len() => {
                 return Err("a type names an unknown POU".into())
             }
+            TypeDesc::Subrange { base, lo, hi } => {
+                let (min, max) =
+                    stc_values::int_range(*base).ok_or("a subrange of a non-integer type")?;
+                if lo > hi || *lo < min || *hi > max {
+                    return Err("a subrange with invalid bounds".into());
+                }
+            }
             _ => {}
         }
     }
@@ -207,28 +214,7 @@ fn type_ok(img: &Image, t: TypeRef) -> Result<(), String> {
 
 /// The size in bytes of a value of a type (bounded, for range checks).
 fn value_size(img: &Image, t: TypeRef) -> u64 {
-    match img.types.get(t as usize) {
-        Some(TypeDesc::Scalar(e)) => stc_ir::layout::elem_size(*e) as u64,
-        Some(TypeDesc::Enum { base, .. }) => stc_ir::layout::elem_size(*base) as u64,
-        Some(TypeDesc::String { wide, cap }) => 2 + *cap as u64 * if *wide { 2 } else { 1 },
-        Some(TypeDesc::Array { dims, stride, .. }) => {
-            let n: i128 = dims
-                .iter()
-                .map(|(l, h)| (*h as i128 - *l as i128 + 1).max(0))
-                .product();
-            (n.clamp(0, u32::MAX as i128) as u64).saturating_mul(*stride as u64)
-        }
-        Some(TypeDesc::Struct { fields, .. }) => fields
-            .iter()
-            .map(|f| f.offset as u64 + 1)
-            .max()
-            .unwrap_or(0),
-        Some(TypeDesc::Instance { pou }) => img
-            .pous
-            .get(*pou as usize)
-            .map_or(0, |p| p.instance_size as u64),
-        None => 0,
-    }
+    img.type_size(t)
 }
 
 /// An operand of `size` bytes in the context of POU `pou`.
@@ -316,11 +302,86 @@ fn instr_ok(
             op_ok(img, pou, d, dw as u64 / 8)?;
             op_ok(img, pou, a, aw as u64 / 8)?;
         }
-        Instr::Index { d, a, idx, lo, .. } => {
+        Instr::Elem { d, a, idx, desc } | Instr::ElemP { d, p: a, idx, desc } => {
+            let e = elem_ok(img, desc)?;
             op_ok(img, pou, d, 4)?;
-            op_ok(img, pou, a, 4)?;
-            op_ok(img, pou, idx, 8)?;
-            op_ok(img, pou, lo, 8)?;
+            op_ok(img, pou, idx, e.num.size() as u64)?;
+            let span = if matches!(ins, Instr::Elem { .. }) {
+                elem_span(&e, 1)
+            } else {
+                4
+            };
+            op_ok(img, pou, a, span)?;
+        }
+        Instr::LdElem1 { d: v, a, idx, desc }
+        | Instr::LdElem2 { d: v, a, idx, desc }
+        | Instr::LdElem4 { d: v, a, idx, desc }
+        | Instr::LdElem8 { d: v, a, idx, desc }
+        | Instr::StElem1 { a, idx, v, desc }
+        | Instr::StElem2 { a, idx, v, desc }
+        | Instr::StElem4 { a, idx, v, desc }
+        | Instr::StElem8 { a, idx, v, desc } => {
+            let e = elem_ok(img, desc)?;
+            let n = elem_width(ins);
+            op_ok(img, pou, v, n)?;
+            op_ok(img, pou, idx, e.num.size() as u64)?;
+            op_ok(img, pou, a, elem_span(&e, n))?;
+        }
+        Instr::Ld1 { d: a, p, .. }
+        | Instr::Ld2 { d: a, p, .. }
+        | Instr::Ld4 { d: a, p, .. }
+        | Instr::Ld8 { d: a, p, .. }
+        | Instr::St1 { p, a, .. }
+        | Instr::St2 { p, a, .. }
+        | Instr::St4 { p, a, .. }
+        | Instr::St8 { p, a, .. } => {
+            op_ok(img, pou, a, elem_width(ins))?;
+            op_ok(img, pou, p, 4)?;
+        }
+        Instr::Min { d, a, b, num: n } | Instr::Max { d, a, b, num: n } => {
+            let s = num(n)?.size() as u64;
+            for o in [d, a, b] {
+                op_ok(img, pou, o, s)?;
+            }
+        }
+        Instr::Limit {
+            d,
+            lo,
+            a,
+            hi,
+            num: n,
+        } => {
+            let s = num(n)?.size() as u64;
+            for o in [d, lo, a, hi] {
+                op_ok(img, pou, o, s)?;
+            }
+        }
+        Instr::Abs { d, a, num: n } => {
+            let s = num(n)?.size() as u64;
+            op_ok(img, pou, d, s)?;
+            op_ok(img, pou, a, s)?;
+        }
+        Instr::Shift {
+            d,
+            a,
+            n,
+            op,
+            num: k,
+            nnum,
+        } => {
+            let (k, nk) = (num(k)?, num(nnum)?);
+            if k.is_float() || nk.is_float() || op > 3 {
+                return Err("invalid shift".into());
+            }
+            op_ok(img, pou, d, k.size() as u64)?;
+            op_ok(img, pou, a, k.size() as u64)?;
+            op_ok(img, pou, n, nk.size() as u64)?;
+        }
+        Instr::Sel { d, g, a, b, len } => {
+            op_ok(img, pou, g, 1)?;
+            for o in [d, a, b] {
+                op_ok(img, pou, o, len as u64)?;
+            }
         }
         Instr::Load { d, p, len, .. } => {
             op_ok(img, pou, d, len as u64)?;
@@ -382,6 +443,35 @@ fn instr_ok(
         _ => {}
     }
     Ok(())
+}
+
+fn elem_ok(img: &Image, desc: u32) -> Result<ElemDesc, String> {
+    let e = *img
+        .elems
+        .get(desc as usize)
+        .ok_or("unknown array dimension descriptor")?;
+    if e.num.is_float() {
+        return Err("an array index must be an integer".into());
+    }
+    Ok(e)
+}
+
+/// The bytes from an array's base that an access of `n` bytes may touch.
+fn elem_span(e: &ElemDesc, n: u64) -> u64 {
+    if e.count == 0 {
+        0
+    } else {
+        (e.count as u64 - 1) * e.stride as u64 + n
+    }
+}
+
+/// The width of a sized load or store.
+fn elem_width(ins: &Instr) -> u64 {
+    let mn = ins.mnemonic();
+    mn.rsplit('.')
+        .next()
+        .and_then(|w| w.parse().ok())
+        .unwrap_or(8)
 }
 
 /// A callee's frame must lie inside the caller's.

@@ -91,16 +91,33 @@ impl Parser<'_> {
             self.skip_to_item();
             return None;
         };
+        self.pou_partial = false;
+        self.pou_skipped.clear();
+        let mut extends = None;
         if kind == PouKind::FunctionBlock {
+            // `EXTENDS Base` names one (possibly qualified) base, `IMPLEMENTS
+            // I1, I2` a list: what follows is the POU's first member.
             for word in ["EXTENDS", "IMPLEMENTS"] {
                 if self.at_word(word) {
                     let span = self.bump().span();
                     self.unsupported(span, "inheritance (EXTENDS, IMPLEMENTS) is");
-                    while self.at(TokenKind::Ident)
-                        || self.at(TokenKind::Comma)
-                        || self.at(TokenKind::Dot)
-                    {
+                    loop {
+                        let first = self.tok();
+                        if first.kind != TokenKind::Ident {
+                            break;
+                        }
                         self.bump();
+                        while self.at(TokenKind::Dot) && self.nth_kind(1) == TokenKind::Ident {
+                            self.bump();
+                            self.bump();
+                        }
+                        if word == "EXTENDS" {
+                            extends = Some(self.intern_token(first));
+                            break;
+                        }
+                        if !self.eat(TokenKind::Comma) {
+                            break;
+                        }
                     }
                 }
             }
@@ -112,7 +129,7 @@ impl Parser<'_> {
         };
         let mut var_blocks = Vec::new();
         while !self.aborted {
-            if is_var_block_start(self.kind()) {
+            if self.at_var_block_start() {
                 if let Some(b) = self.var_block() {
                     var_blocks.push(b);
                 }
@@ -126,12 +143,14 @@ impl Parser<'_> {
         if self.at_il_body() {
             let span = self.tok().span();
             self.unsupported(span, "Instruction List bodies are");
+            self.pou_partial = true;
             while !self.at(TokenKind::Eof)
                 && !is_item_end(self.kind())
                 && !is_item_start(self.kind())
             {
                 self.bump();
             }
+            self.superseded.push(span.to(self.prev().span()));
         } else {
             body = self.stmt_list(false);
         }
@@ -142,7 +161,7 @@ impl Parser<'_> {
                 break;
             }
             let k = self.kind();
-            if is_var_block_start(k) {
+            if self.at_var_block_start() {
                 let d = Diagnostic::new(
                     Code::E0020,
                     self.tok().span(),
@@ -183,13 +202,29 @@ impl Parser<'_> {
             body,
             span: opener.to(self.prev().span()),
             pragmas,
+            extends,
+            skipped_members: std::mem::take(&mut self.pou_skipped),
+            partial: std::mem::take(&mut self.pou_partial),
         })
+    }
+
+    /// A variable section starts here: a VAR keyword, or the dialect
+    /// sections VAR_STAT and VAR_INST (read as VAR after their E0030).
+    pub(crate) fn at_var_block_start(&self) -> bool {
+        is_var_block_start(self.kind())
+            || (self.at_word("VAR_STAT") || self.at_word("VAR_INST"))
+                && !matches!(
+                    self.nth_kind(1),
+                    TokenKind::Assign | TokenKind::LParen | TokenKind::Dot | TokenKind::LBracket
+                )
     }
 
     /// Whether the body that starts here is Instruction List: an IL operator
     /// with an operand, or a label, where ST would have `:=` or a call.
     fn at_il_body(&self) -> bool {
         match self.kind() {
+            // `& x`, `&N x`: AND in IL; no ST statement starts with `&`.
+            TokenKind::Amp => true,
             TokenKind::Kw(
                 Keyword::And | Keyword::Or | Keyword::Xor | Keyword::Not | Keyword::Mod,
             ) => !matches!(self.nth_kind(1), TokenKind::LParen),
@@ -199,7 +234,7 @@ impl Parser<'_> {
                 if next == TokenKind::Colon {
                     return true;
                 }
-                IL_OPERATORS.iter().any(|op| op.eq_ignore_ascii_case(word))
+                let il_operator = IL_OPERATORS.iter().any(|op| op.eq_ignore_ascii_case(word))
                     && !matches!(
                         next,
                         TokenKind::Assign
@@ -210,7 +245,40 @@ impl Parser<'_> {
                             | TokenKind::Arrow
                             | TokenKind::QuestionAssign
                             | TokenKind::Caret
-                    )
+                    );
+                // A name with an operand after it on the same line, where ST
+                // needs `:=` or `(`: an IL call of a function (`Scale 10`).
+                let ref_assign = self.nth_is_word(1, "REF") && self.nth_kind(2) == TokenKind::Eq;
+                // Words that start another unsupported part of a body.
+                let other = [
+                    "METHOD",
+                    "PROPERTY",
+                    "ACTION",
+                    "STEP",
+                    "INITIAL_STEP",
+                    "TRANSITION",
+                ]
+                .iter()
+                .any(|w| w.eq_ignore_ascii_case(word));
+                let il_call = !self.newline_between(self.tok(), self.nth(1))
+                    && !ref_assign
+                    && !other
+                    && matches!(
+                        next,
+                        TokenKind::Ident
+                            | TokenKind::Int
+                            | TokenKind::BasedInt
+                            | TokenKind::Real
+                            | TokenKind::SString
+                            | TokenKind::WString
+                            | TokenKind::Duration
+                            | TokenKind::Date
+                            | TokenKind::Tod
+                            | TokenKind::Dt
+                            | TokenKind::Address
+                            | TokenKind::Kw(Keyword::True | Keyword::False)
+                    );
+                il_operator || il_call
             }
             _ => false,
         }
@@ -220,7 +288,16 @@ impl Parser<'_> {
 
     pub(crate) fn var_block(&mut self) -> Option<VarBlock> {
         let start = self.tok();
-        let kind = var_kind(start.kind)?;
+        let kind = if self.at_word("VAR_STAT") || self.at_word("VAR_INST") {
+            let what = format!(
+                "`{}` sections are",
+                self.text_of(start).to_ascii_uppercase()
+            );
+            self.unsupported(start.span(), &what);
+            VarKind::Var
+        } else {
+            var_kind(start.kind)?
+        };
         self.bump();
         let mut constant = false;
         let mut retention = None;
@@ -551,6 +628,44 @@ impl Parser<'_> {
                 self.type_spec();
                 TypeSpecKind::Error
             }
+            TokenKind::Ident
+                if self.at_word("REF_TO")
+                    && matches!(
+                        self.nth_kind(1),
+                        TokenKind::Ident
+                            | TokenKind::Elem(_)
+                            | TokenKind::Kw(Keyword::Array | Keyword::Struct)
+                    ) =>
+            {
+                self.bump();
+                self.unsupported(t.span(), "references (REF_TO) are");
+                self.type_spec();
+                TypeSpecKind::Error
+            }
+            // `UNION` followed by its first member (or its end), not a type
+            // named Union.
+            TokenKind::Ident
+                if self.at_word("UNION")
+                    && (self.nth_is_word(1, "END_UNION")
+                        || self.nth_kind(1) == TokenKind::Ident
+                            && matches!(self.nth_kind(2), TokenKind::Colon | TokenKind::Comma)) =>
+            {
+                self.bump();
+                self.unsupported(t.span(), "UNION types are");
+                // The members are declarations up to END_UNION.
+                while !self.at(TokenKind::Eof)
+                    && !self.at_word("END_UNION")
+                    && !is_item_start(self.kind())
+                    && !is_item_end(self.kind())
+                    && !self.at_kw(Keyword::EndType)
+                {
+                    self.bump();
+                }
+                if self.at_word("END_UNION") {
+                    self.bump();
+                }
+                TypeSpecKind::Error
+            }
             TokenKind::Ident => {
                 self.bump();
                 let name = self.intern_token(t);
@@ -614,7 +729,11 @@ impl Parser<'_> {
         let mut dims = Vec::new();
         if self.expect(TokenKind::LBracket) {
             loop {
-                if self.at(TokenKind::Star) {
+                if self.at(TokenKind::Star)
+                    || self.at(TokenKind::DotDot)
+                        && matches!(self.nth_kind(1), TokenKind::RBracket | TokenKind::Comma)
+                {
+                    // `*`, or `..` as logi.CAD writes it: a variable length.
                     let span = self.bump().span();
                     dims.push(ArrayDim::Star(span));
                 } else {
@@ -737,7 +856,7 @@ impl Parser<'_> {
     fn struct_init(&mut self) -> InitKind {
         self.bump(); // (
         let mut elems = Vec::new();
-        while let Some(name) = self.name("a member name") {
+        while let Some(name) = self.name_use("a member name") {
             self.expect(TokenKind::Assign);
             let value = self.init();
             elems.push(StructInitElem { name, value });

@@ -161,11 +161,16 @@ impl Parser<'_> {
                                 }
                             }
                         }
-                        k if k.is_reserved_word() => {
-                            // A member named like a keyword cannot exist, but
-                            // `fb.TIME` reads better as E0022 than as E0020.
-                            self.name("a member name");
-                            e = self.error_expr(base_span.to(t.span()));
+                        k if k.is_reserved_word() && !super::starts_construct(k) => {
+                            // A member named like a reserved word (`c.LDT`):
+                            // its declaration had the E0022.
+                            self.bump();
+                            let member = self.intern_token(t);
+                            e = self.mk(
+                                ExprKind::Member { base: e, member },
+                                base_span.to(t.span()),
+                                depth,
+                            );
                         }
                         _ => {
                             self.expected("a member name after `.`");
@@ -208,8 +213,9 @@ impl Parser<'_> {
                 }
                 TokenKind::Caret => {
                     let span = self.bump().span();
-                    self.unsupported(span, "pointer dereference `^` is");
-                    e = self.error_expr(self.expr_span(e).to(span));
+                    self.unsupported(span, "the dereference `^` is");
+                    let depth = self.depth_of(e);
+                    e = self.mk(ExprKind::Deref(e), self.expr_span(e).to(span), depth);
                 }
                 _ => break,
             }
@@ -261,7 +267,7 @@ impl Parser<'_> {
             || (self.kind().is_reserved_word()
                 && matches!(self.nth_kind(1), TokenKind::Assign | TokenKind::Arrow));
         if named && self.nth_kind(1) == TokenKind::Assign {
-            let name = self.name("a parameter name");
+            let name = self.name_use("a parameter name");
             self.bump();
             let value = self.expr();
             if let Some(name) = name {
@@ -282,7 +288,7 @@ impl Parser<'_> {
             if negated {
                 self.bump();
             }
-            let name = self.name("a parameter name");
+            let name = self.name_use("a parameter name");
             self.bump(); // =>
             let target = self.expr();
             if let Some(name) = name {
@@ -419,6 +425,19 @@ impl Parser<'_> {
                 let prefix = self.intern_token(t);
                 self.typed_literal(TypePrefix::Named(prefix))
             }
+            TokenKind::Ident if self.at_dunder() && self.nth_kind(1) == TokenKind::LParen => {
+                // `__NEW(INT)`, `__TRUNC(x)`: an operator of the CODESYS and
+                // TwinCAT dialects, reported once (not also as an invalid
+                // identifier) and skipped with its arguments.
+                self.bump();
+                let what = format!("the dialect operator `{}` is", self.text_of(t));
+                self.unsupported(t.span(), &what);
+                self.pou_partial = true;
+                self.skip_parens();
+                let span = t.span().to(self.prev().span());
+                self.superseded.push(span);
+                self.error_expr(span)
+            }
             TokenKind::Ident => {
                 self.bump();
                 let name = self.intern_token(t);
@@ -427,6 +446,16 @@ impl Parser<'_> {
             TokenKind::Elem(ty) if self.nth_kind(1) == TokenKind::Hash => {
                 self.bump();
                 self.typed_literal(TypePrefix::Elem(ty, t.span()))
+            }
+            // A reserved word used as a name (`TIME(...)`, `r_edge`): its
+            // declaration had the E0022; an undeclared one is reported when
+            // names are resolved.
+            TokenKind::Elem(_)
+            | TokenKind::Generic(_)
+            | TokenKind::Kw(Keyword::REdge | Keyword::FEdge) => {
+                self.bump();
+                let name = self.intern_token(t);
+                self.mk(ExprKind::Name(name), t.span(), 0)
             }
             // Operators in functional form: AND(a, b), MOD(7, 2), OR(...).
             TokenKind::Kw(

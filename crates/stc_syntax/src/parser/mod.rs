@@ -71,8 +71,21 @@ pub fn parse_file(text: &str, base: u32, ast: &mut Ast, interner: &mut Interner)
         last_error_pos: if runs_to_eof { eof_index } else { usize::MAX },
         aborted: false,
         open: Vec::new(),
+        superseded: Vec::new(),
+        pou_partial: false,
+        pou_skipped: Vec::new(),
+        unit: UnitPart::Outside,
     };
     p.file();
+    // A `__` operator reported as not supported is not also an invalid
+    // identifier: one diagnostic for the one construct.
+    let superseded = std::mem::take(&mut p.superseded);
+    diagnostics.retain(|d| {
+        d.code != Code::E0005
+            || !superseded
+                .iter()
+                .any(|s| s.lo <= d.span.lo && d.span.hi <= s.hi)
+    });
     diagnostics.append(&mut p.diags);
     for span in p
         .pragmas
@@ -105,7 +118,14 @@ fn pragma_diagnostic(span: Span, text: &str) -> Diagnostic {
         )
         .with_label("not supported yet")
     } else {
-        let shown: String = text.chars().take(40).collect();
+        // The first line, shortened: a message is one line.
+        let first = text.lines().next().unwrap_or("");
+        let words: Vec<&str> = first.split_whitespace().collect();
+        let first = words.join(" ");
+        let mut shown: String = first.chars().take(40).collect();
+        if shown.len() < first.len() || text.trim_end().contains('\n') {
+            shown.push_str(" …");
+        }
         Diagnostic::new(
             Code::W0002,
             span,
@@ -136,6 +156,17 @@ impl Open {
     }
 }
 
+/// Where the parser is in a logi.CAD `UNIT` file (reported once as not
+/// supported; its declarations are still read).
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub(crate) enum UnitPart {
+    Outside,
+    /// After `UNIT name;`.
+    Body,
+    /// Inside its INTERFACE section: forward declarations are skipped.
+    Interface,
+}
+
 pub(crate) struct Parser<'a> {
     text: &'a str,
     base: u32,
@@ -157,6 +188,15 @@ pub(crate) struct Parser<'a> {
     aborted: bool,
     /// Blocks open around the statement being parsed.
     open: Vec<Open>,
+    /// Regions reported as unsupported and skipped (and `__` words reported
+    /// as unsupported operators): an E0005 from the lexer inside them is
+    /// dropped.
+    superseded: Vec<Span>,
+    /// Whether part of the POU being parsed was skipped (see `Pou::partial`).
+    pou_partial: bool,
+    /// Members of the POU being parsed that were skipped.
+    pou_skipped: Vec<Ident>,
+    unit: UnitPart,
 }
 
 /// Reserved words that open or close a section, which are never taken for a
@@ -447,6 +487,18 @@ impl<'a> Parser<'a> {
         }
     }
 
+    /// A name being used, not declared (a parameter or member name): a
+    /// reserved word is accepted silently, since its declaration already
+    /// had the E0022 (or a later phase reports the unknown name).
+    fn name_use(&mut self, what: &str) -> Option<Ident> {
+        let t = self.tok();
+        if t.kind.is_reserved_word() && !starts_construct(t.kind) {
+            self.bump();
+            return Some(self.intern_token(t));
+        }
+        self.name(what)
+    }
+
     /// After a reserved word where a name is expected: does the next token
     /// suggest the word was meant as a name (`if : INT;`, `int,`)?
     fn reserved_name_plausible(&self) -> bool {
@@ -541,6 +593,32 @@ impl<'a> Parser<'a> {
         self.report(d);
     }
 
+    /// Skips a parenthesised group starting at `(` (nested groups too).
+    fn skip_parens(&mut self) {
+        let mut depth = 0u32;
+        while !self.at(TokenKind::Eof) {
+            match self.bump().kind {
+                TokenKind::LParen => depth += 1,
+                TokenKind::RParen => {
+                    depth = depth.saturating_sub(1);
+                    if depth == 0 {
+                        return;
+                    }
+                }
+                _ => {}
+            }
+            if depth == 0 {
+                return;
+            }
+        }
+    }
+
+    /// Whether the current token is a word starting with `__`: the
+    /// operators CODESYS and TwinCAT reserve (`__NEW`, `__TRY`, `__TRUNC`).
+    fn at_dunder(&self) -> bool {
+        self.at(TokenKind::Ident) && self.text_of(self.tok()).starts_with("__")
+    }
+
     // ----- top level ------------------------------------------------------
 
     fn file(&mut self) {
@@ -559,6 +637,16 @@ impl<'a> Parser<'a> {
         let t = self.tok();
         let pragmas = self.take_pragmas(t.lo);
         match t.kind {
+            TokenKind::Kw(Keyword::Function | Keyword::FunctionBlock | Keyword::Program)
+                if self.unit == UnitPart::Interface =>
+            {
+                // A forward declaration `FUNCTION name;` of a UNIT's
+                // INTERFACE: the POU itself follows in IMPLEMENTATION.
+                while !self.at(TokenKind::Eof) && !self.eat(TokenKind::Semi) {
+                    self.bump();
+                }
+                None
+            }
             TokenKind::Kw(Keyword::Type) => self.type_block(pragmas),
             TokenKind::Kw(Keyword::Function) => self
                 .pou(crate::ast::PouKind::Function, pragmas)
@@ -576,6 +664,7 @@ impl<'a> Parser<'a> {
                 self.bump();
                 None
             }
+            TokenKind::Ident if self.at_unit_part() => None,
             TokenKind::Ident if self.at_unsupported_item() => None,
             _ => {
                 self.expected(
@@ -601,7 +690,50 @@ impl<'a> Parser<'a> {
             if self.at_word(word) && self.nth_kind(1) == TokenKind::Ident {
                 let span = self.tok().span();
                 self.unsupported(span, what);
+                let name = self.nth(1);
+                let name = self.intern_token(name);
+                self.ast.unsupported_names.push(name);
                 self.skip_unsupported(end, is_item_start);
+                self.superseded.push(span.to(self.prev().span()));
+                return true;
+            }
+        }
+        false
+    }
+
+    /// The parts of a logi.CAD `UNIT` file: `UNIT name;` is reported once;
+    /// `USES ...;`, INTERFACE, IMPLEMENTATION and their ends are then
+    /// skipped without a word, and the declarations inside are read as
+    /// usual (forward declarations excepted, see `item`).
+    fn at_unit_part(&mut self) -> bool {
+        if self.at_word("UNIT") && self.nth_kind(1) == TokenKind::Ident {
+            let span = self.tok().span();
+            self.unsupported(span, "logi.CAD UNIT files are");
+            self.bump();
+            self.bump();
+            self.eat(TokenKind::Semi);
+            self.unit = UnitPart::Body;
+            return true;
+        }
+        if self.unit == UnitPart::Outside {
+            return false;
+        }
+        if self.at_word("USES") {
+            while !self.at(TokenKind::Eof) && !self.eat(TokenKind::Semi) {
+                self.bump();
+            }
+            return true;
+        }
+        for (word, next) in [
+            ("INTERFACE", UnitPart::Interface),
+            ("END_INTERFACE", UnitPart::Body),
+            ("IMPLEMENTATION", UnitPart::Body),
+            ("END_IMPLEMENTATION", UnitPart::Body),
+        ] {
+            if self.at_word(word) {
+                self.bump();
+                self.eat(TokenKind::Semi);
+                self.unit = next;
                 return true;
             }
         }

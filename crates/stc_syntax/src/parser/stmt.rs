@@ -130,6 +130,26 @@ impl Parser<'_> {
             TokenKind::Kw(Keyword::Continue) => simple(self, StmtKind::Continue),
             TokenKind::Kw(Keyword::Return) => simple(self, StmtKind::Return),
             TokenKind::Ident if self.at_unsupported_in_body() => None,
+            TokenKind::Ident if self.at_word("__TRY") => {
+                // TwinCAT/CODESYS exception handling: one E0030, the block
+                // up to `__ENDTRY` skipped.
+                let start = self.tok().span();
+                self.unsupported(start, "`__TRY` blocks are");
+                self.pou_partial = true;
+                while !self.at(TokenKind::Eof)
+                    && !is_item_end(self.kind())
+                    && !is_item_start(self.kind())
+                {
+                    let end = self.at_word("__ENDTRY");
+                    self.bump();
+                    if end {
+                        break;
+                    }
+                }
+                self.superseded.push(start.to(self.prev().span()));
+                self.eat(TokenKind::Semi);
+                None
+            }
             _ => self.expr_statement(),
         }
     }
@@ -165,8 +185,14 @@ impl Parser<'_> {
             TokenKind::QuestionAssign => {
                 let span = self.bump().span();
                 self.unsupported(span, "assignment attempt `?=` is");
-                self.expr();
-                StmtKind::Error
+                let value = self.expr();
+                StmtKind::Unsupported(vec![target, value])
+            }
+            TokenKind::Ident if self.at_word("REF") && self.nth_kind(1) == TokenKind::Eq => {
+                let span = self.bump().span().to(self.bump().span());
+                self.unsupported(span, "reference assignment `REF=` is");
+                let value = self.expr();
+                StmtKind::Unsupported(vec![target, value])
             }
             _ if matches!(self.ast.expr(target).kind, ExprKind::Call { .. }) => {
                 StmtKind::Call(target)
@@ -212,9 +238,12 @@ impl Parser<'_> {
                 | TokenKind::Tod
                 | TokenKind::Dt
                 | TokenKind::Elem(_)
+                | TokenKind::Generic(_)
                 | TokenKind::Kw(
                     Keyword::True
                         | Keyword::False
+                        | Keyword::REdge
+                        | Keyword::FEdge
                         | Keyword::Not
                         | Keyword::And
                         | Keyword::Or
@@ -240,12 +269,14 @@ impl Parser<'_> {
         if sfc {
             let span = self.tok().span();
             self.unsupported(span, "Sequential Function Chart bodies are");
+            self.pou_partial = true;
             while !self.at(TokenKind::Eof)
                 && !is_item_end(self.kind())
                 && !is_item_start(self.kind())
             {
                 self.bump();
             }
+            self.superseded.push(span.to(self.prev().span()));
             return true;
         }
         for (word, end, what) in [
@@ -256,7 +287,12 @@ impl Parser<'_> {
             if self.at_word(word) && self.nth_kind(1) == TokenKind::Ident {
                 let span = self.tok().span();
                 self.unsupported(span, what);
+                let name = self.nth(1);
+                let name = self.intern_token(name);
+                self.pou_skipped.push(name);
+                self.pou_partial = true;
                 self.skip_unsupported(end, |k| is_item_end(k) || is_item_start(k));
+                self.superseded.push(span.to(self.prev().span()));
                 return true;
             }
         }
@@ -462,6 +498,7 @@ impl Parser<'_> {
     /// starts here, rather than a statement (`MAX := 1;`, `f(x := 1);`).
     fn at_case_label(&self) -> bool {
         match self.kind() {
+            TokenKind::Elem(_) if self.nth_kind(1) == TokenKind::Hash => true,
             TokenKind::Int
             | TokenKind::BasedInt
             | TokenKind::Real
@@ -471,9 +508,12 @@ impl Parser<'_> {
             | TokenKind::SString
             | TokenKind::WString
             | TokenKind::Duration
-            | TokenKind::Kw(Keyword::True | Keyword::False)
-            | TokenKind::Elem(_) => true,
-            TokenKind::Ident => {
+            | TokenKind::Kw(Keyword::True | Keyword::False) => true,
+            // A name (reserved words too: a variable may be named like one).
+            TokenKind::Ident
+            | TokenKind::Elem(_)
+            | TokenKind::Generic(_)
+            | TokenKind::Kw(Keyword::REdge | Keyword::FEdge) => {
                 // Look for the first `:` (a label) or `:=`/`;`/keyword (a
                 // statement) outside brackets.
                 let mut depth = 0i32;

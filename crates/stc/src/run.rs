@@ -1,0 +1,359 @@
+//! `stc run` (spec/cli.md): compile the sources (or load one `.stbc`
+//! file), set the runtime up from the options, run in simulated time or in
+//! real time, and print the reports.
+//!
+//! The runtime itself is `stc_runtime`; this file is the I/O around it:
+//! reading the stimulus file, the terminal, Ctrl-C, and the exit statuses
+//! (0 success, 1 errors in the sources, 2 a bad option, path, value or
+//! file, 3 a run-time fault).
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use clap::{Args, ValueEnum};
+use stc_runtime::path::split_list;
+use stc_runtime::realtime::{RealTime, WallClock};
+use stc_runtime::{Format, Report, Simulation, Stimulus, Unpaced, DEFAULT_MAX_STEPS};
+use stc_vm::Image;
+
+use crate::cli::{Outcome, EXIT_ERRORS, EXIT_OK, EXIT_USAGE};
+use crate::driver::{self, Options};
+use crate::sources;
+
+/// A run-time fault stopped the program.
+pub const EXIT_FAULT: u8 = 3;
+
+/// The options of `stc run` (spec/cli.md), after the diagnostics options.
+#[derive(Args, Debug)]
+pub struct RunArgs {
+    /// Source files or directories (one project), or one `.stbc` file.
+    #[arg(required = true)]
+    pub files: Vec<PathBuf>,
+    /// Run this CONFIGURATION.
+    #[arg(long, value_name = "NAME", conflicts_with = "program")]
+    pub config: Option<String>,
+    /// Run one instance of this PROGRAM type (named after the type).
+    #[arg(long, value_name = "TYPE")]
+    pub program: Option<String>,
+    /// Cycles (base ticks) to run [default: 1; with --realtime, until Ctrl-C].
+    #[arg(long, value_name = "N")]
+    pub cycles: Option<u64>,
+    /// Simulated time per cycle, `10ms` or `T#10ms` [default: the GCD of
+    /// the periodic task intervals, or 10ms].
+    #[arg(long, value_name = "DURATION")]
+    pub tick: Option<String>,
+    /// Assign a variable before cycle 1; VALUE in ST literal syntax.
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    pub set: Vec<String>,
+    /// Assign variables before given cycles: a CSV file with the header
+    /// `cycle,PATH,...`.
+    #[arg(long, value_name = "FILE.csv")]
+    pub stimulus: Option<PathBuf>,
+    /// What to report [default: the outputs of every program instance and
+    /// every %Q variable].
+    #[arg(long, value_name = "PATH,...")]
+    pub watch: Vec<String>,
+    /// Report after every cycle, not only after the last.
+    #[arg(long)]
+    pub trace: bool,
+    /// Report format.
+    #[arg(long, value_enum, default_value_t = ReportFormat::Text)]
+    pub format: ReportFormat,
+    /// Watchdog: VM instructions allowed per program per cycle.
+    #[arg(long = "max-steps", value_name = "N", default_value_t = DEFAULT_MAX_STEPS)]
+    pub max_steps: u64,
+    /// Pace the cycles with the wall clock (stop with Ctrl-C).
+    #[arg(long)]
+    pub realtime: bool,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ReportFormat {
+    Text,
+    Json,
+}
+
+fn usage_error(msg: impl std::fmt::Display) -> Outcome {
+    Outcome {
+        stderr: format!("error: {msg}\n"),
+        status: EXIT_USAGE,
+        ..Outcome::default()
+    }
+}
+
+/// Runs `stc run`.
+pub fn run(opts: &Options, args: RunArgs) -> Outcome {
+    match load(&args.files, opts) {
+        Ok((image, diagnostics)) => setup_and_run(image, &args, diagnostics),
+        Err(o) => o,
+    }
+}
+
+/// The image to run, and the rendered diagnostics (warnings) of compiling
+/// it; `Err` is the outcome to return at once.
+fn load(files: &[PathBuf], opts: &Options) -> Result<(Image, String), Outcome> {
+    let is_stbc = |p: &Path| {
+        p.extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("stbc"))
+    };
+    if files.iter().any(|p| is_stbc(p)) {
+        let [file] = files else {
+            return Err(usage_error(
+                "a .stbc file is run alone, without other files",
+            ));
+        };
+        let bytes = std::fs::read(file)
+            .map_err(|e| usage_error(format!("cannot read {}: {e}", file.display())))?;
+        let image = stc_vm::format::decode(&bytes)
+            .map_err(|e| usage_error(format!("cannot load {}: {e}", file.display())))?;
+        return Ok((image, String::new()));
+    }
+    let (sm, diags) = sources::load(files).map_err(usage_error)?;
+    let a = driver::analyse(sm, diags, opts);
+    let all = a.all_diagnostics();
+    let rendered = driver::render(&all, &a.parsed.sources, opts);
+    if driver::failed(&all, opts) {
+        return Err(Outcome {
+            stderr: rendered,
+            status: EXIT_ERRORS,
+            ..Outcome::default()
+        });
+    }
+    let module = driver::lower(a);
+    match stc_vm::compile(&module) {
+        Ok(image) => Ok((image, rendered)),
+        Err(e) => Err(Outcome {
+            stderr: format!("{rendered}error: cannot compile for the VM: {e}\n"),
+            status: EXIT_ERRORS,
+            ..Outcome::default()
+        }),
+    }
+}
+
+/// Runs an image; `diagnostics` (warnings) come first on stderr.
+fn setup_and_run(image: Image, args: &RunArgs, diagnostics: String) -> Outcome {
+    if args.realtime {
+        // Reports stream from the first cycle on: the warnings go first.
+        if let Some(mut e) = console::stderr() {
+            let _ = e.write_all(diagnostics.as_bytes());
+            return configure_and_run(image, args);
+        }
+    }
+    let mut o = configure_and_run(image, args);
+    o.stderr.insert_str(0, &diagnostics);
+    o
+}
+
+fn configure_and_run(image: Image, args: &RunArgs) -> Outcome {
+    let stimulus = match &args.stimulus {
+        None => None,
+        Some(path) => {
+            let text = match std::fs::read(path) {
+                Ok(bytes) => match String::from_utf8(bytes) {
+                    Ok(t) => t,
+                    Err(_) => return usage_error(format!("{} is not UTF-8 text", path.display())),
+                },
+                Err(e) => return usage_error(format!("cannot read {}: {e}", path.display())),
+            };
+            match Stimulus::parse(&path.display().to_string(), &text) {
+                Ok(s) => Some(s),
+                Err(e) => return usage_error(e),
+            }
+        }
+    };
+    let tick_ns = match args
+        .tick
+        .as_deref()
+        .map(stc_runtime::parse_tick)
+        .transpose()
+    {
+        Ok(t) => t,
+        Err(e) => return usage_error(e),
+    };
+    let options = stc_runtime::Options {
+        config: args.config.clone(),
+        program: args.program.clone(),
+        tick_ns,
+        sets: args.set.clone(),
+        watch: (!args.watch.is_empty())
+            .then(|| args.watch.iter().flat_map(|w| split_list(w)).collect()),
+        max_steps: args.max_steps,
+    };
+    let mut sim = match Simulation::new(Arc::new(image), &options, stimulus.as_ref()) {
+        Ok(s) => s,
+        Err(e) => return usage_error(e),
+    };
+    let cycles = match (args.cycles, args.realtime) {
+        (Some(n), _) => Some(n),
+        (None, false) => Some(1),
+        (None, true) => None,
+    };
+    if let Some(n) = cycles {
+        if n > sim.last_cycle() {
+            return usage_error(format!(
+                "--cycles {n}: with a tick of {}, cycles past {} would be later than the largest TIME",
+                stc_syntax::literal::format_duration(sim.plan().tick_ns, false),
+                sim.last_cycle()
+            ));
+        }
+    }
+    let format = match args.format {
+        ReportFormat::Text => Format::Text,
+        ReportFormat::Json => Format::Json,
+    };
+    if args.realtime {
+        realtime(&mut sim, cycles, args.trace, format)
+    } else {
+        let mut stdout = String::new();
+        let result = stc_runtime::run(&mut sim, cycles, args.trace, &mut Unpaced, &mut |r| {
+            stdout.push_str(&r.render(format))
+        });
+        finish(stdout, String::new(), result)
+    }
+}
+
+fn finish(stdout: String, mut stderr: String, result: Result<(), stc_vm::VmFault>) -> Outcome {
+    let status = match result {
+        Ok(()) => EXIT_OK,
+        Err(fault) => {
+            stderr.push_str(&format!("{fault}\n"));
+            EXIT_FAULT
+        }
+    };
+    Outcome {
+        stdout,
+        stderr,
+        file: None,
+        status,
+    }
+}
+
+/// Real time: reports and warnings are written as they happen, not
+/// collected.
+fn realtime(sim: &mut Simulation, cycles: Option<u64>, trace: bool, format: Format) -> Outcome {
+    let stop = sigint::install();
+    let (mut stdout, mut stderr) = (String::new(), String::new());
+    let (mut out_stream, mut err_stream) = (console::stdout(), console::stderr());
+    let mut warn = |w: String| match &mut err_stream {
+        Some(f) => {
+            let _ = writeln!(f, "{w}");
+        }
+        None => {
+            stderr.push_str(&w);
+            stderr.push('\n');
+        }
+    };
+    let mut pacer = RealTime::new(WallClock::new(), sim.plan().tick_ns, stop, &mut warn);
+    let mut emit = |r: &Report| match &mut out_stream {
+        Some(f) => {
+            let _ = f.write_all(r.render(format).as_bytes());
+            let _ = f.flush();
+        }
+        None => stdout.push_str(&r.render(format)),
+    };
+    let result = stc_runtime::run(sim, cycles, trace, &mut pacer, &mut emit);
+    finish(stdout, stderr, result)
+}
+
+/// The standard streams as files of their own: `cli::main` holds the
+/// locks of `std::io::stdout()` and `stderr()` while a command runs (it
+/// prints the collected outcome afterwards), so a command that must print
+/// as it goes writes to duplicates of the descriptors, which need no lock.
+/// `None` where that is not possible: the output is then collected.
+mod console {
+    use std::fs::File;
+
+    #[cfg(unix)]
+    fn dup(s: impl std::os::fd::AsFd) -> Option<File> {
+        s.as_fd().try_clone_to_owned().ok().map(File::from)
+    }
+
+    #[cfg(windows)]
+    fn dup(s: impl std::os::windows::io::AsHandle) -> Option<File> {
+        s.as_handle().try_clone_to_owned().ok().map(File::from)
+    }
+
+    #[cfg(not(any(unix, windows)))]
+    fn dup<T>(_: T) -> Option<File> {
+        None
+    }
+
+    pub fn stdout() -> Option<File> {
+        dup(std::io::stdout())
+    }
+
+    pub fn stderr() -> Option<File> {
+        dup(std::io::stderr())
+    }
+}
+
+/// Ctrl-C in real time: the first one stops the run after the current
+/// cycle (the last report is still printed); a second one ends the process
+/// at once, as an interrupted program would.
+mod sigint {
+    use std::sync::atomic::{AtomicBool, Ordering};
+
+    static STOP: AtomicBool = AtomicBool::new(false);
+
+    #[cfg(unix)]
+    mod sys {
+        use std::os::raw::c_int;
+
+        pub const SIGINT: c_int = 2;
+
+        extern "C" {
+            /// `signal(2)`; the handler is passed as an address, which is
+            /// how C's `sighandler_t` is represented on every Unix.
+            pub fn signal(signum: c_int, handler: usize) -> usize;
+            /// `_exit(2)`: async-signal-safe.
+            pub fn _exit(status: c_int) -> !;
+        }
+    }
+
+    #[cfg(unix)]
+    extern "C" fn on_sigint(_: std::os::raw::c_int) {
+        // Only async-signal-safe work: an atomic swap, maybe `_exit`.
+        if STOP.swap(true, Ordering::SeqCst) {
+            // SAFETY: `_exit` takes no locks and may be called from a
+            // signal handler; 130 is the status of a process ended by SIGINT.
+            unsafe { sys::_exit(130) }
+        }
+    }
+
+    /// Installs the handler (once) and returns the flag it sets.
+    pub fn install() -> &'static AtomicBool {
+        #[cfg(unix)]
+        {
+            static INSTALLED: std::sync::Once = std::sync::Once::new();
+            INSTALLED.call_once(|| {
+                // SAFETY: the handler is an `extern "C" fn(c_int)` that only
+                // touches an atomic (and `_exit`), which is what `signal`
+                // requires of a handler.
+                unsafe {
+                    sys::signal(sys::SIGINT, on_sigint as extern "C" fn(_) as usize);
+                }
+            });
+        }
+        &STOP
+    }
+
+    #[cfg(all(test, unix))]
+    mod tests {
+        use super::*;
+
+        extern "C" {
+            fn raise(sig: std::os::raw::c_int) -> std::os::raw::c_int;
+        }
+
+        #[test]
+        fn the_first_interrupt_sets_the_stop_flag() {
+            let stop = install();
+            assert!(!stop.load(Ordering::SeqCst));
+            // SAFETY: raising SIGINT runs the handler installed above, on
+            // this thread, before `raise` returns.
+            assert_eq!(unsafe { raise(sys::SIGINT) }, 0);
+            assert!(stop.load(Ordering::SeqCst));
+        }
+    }
+}

@@ -1,0 +1,125 @@
+//! `stc-bench vm [CYCLES] [KERNEL]`: the kernels of `bench/kernels`, each run on the
+//! VM and as hand-written C compiled with `gcc -O2`; prints nanoseconds per
+//! cycle (best of 5 repetitions) and the ratio VM / C.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::Instant;
+
+use stc::driver::{self, Options};
+
+fn kernels_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../bench/kernels")
+}
+
+/// Nanoseconds per cycle of a kernel on the VM.
+fn vm_time(st: &Path, cycles: u64) -> Result<f64, String> {
+    let (sm, diags) = stc::sources::load(&[st.to_path_buf()]).map_err(|e| e.to_string())?;
+    vm_time_of(sm, diags, cycles, None)
+}
+
+/// Nanoseconds per cycle of the first program of some sources; `start`
+/// names a BOOL input set to TRUE before the first cycle.
+fn vm_time_of(
+    sm: stc_diagnostics::SourceMap,
+    diags: Vec<stc_diagnostics::Diagnostic>,
+    cycles: u64,
+    start: Option<&str>,
+) -> Result<f64, String> {
+    let a = driver::analyse(sm, diags, &Options::default());
+    let all = a.all_diagnostics();
+    if all.iter().any(|d| d.is_error()) {
+        return Err(driver::render(&all, &a.parsed.sources, &Options::default()));
+    }
+    let image = Arc::new(stc_vm::compile(&driver::lower(a)).map_err(|e| e.to_string())?);
+    let inst = image.programs.first().ok_or("no program")?.clone();
+    let mut best = f64::MAX;
+    for _ in 0..5 {
+        let mut m = stc_vm::Machine::new(image.clone());
+        if let Some(name) = start {
+            let pou = &image.pous[inst.pou as usize];
+            let v = pou
+                .vars
+                .iter()
+                .find(|v| v.name.eq_ignore_ascii_case(name))
+                .ok_or("no start input")?;
+            m.write_value(inst.offset + v.offset, v.ty, &stc_values::Value::Bool(true));
+        }
+        let t0 = Instant::now();
+        for k in 0..cycles {
+            m.run_program(&inst, k as i64 * 10_000_000, u64::MAX)
+                .map_err(|f| f.to_string())?;
+        }
+        best = best.min(t0.elapsed().as_nanos() as f64 / cycles as f64);
+    }
+    Ok(best)
+}
+
+/// Nanoseconds per cycle of the C version.
+fn c_time(c: &Path, cycles: u64) -> Result<f64, String> {
+    let exe = std::env::temp_dir().join(format!(
+        "stc-bench-{}",
+        c.file_stem().and_then(|s| s.to_str()).unwrap_or("k")
+    ));
+    let status = std::process::Command::new("gcc")
+        .args(["-O2", "-o"])
+        .arg(&exe)
+        .arg(c)
+        .status()
+        .map_err(|e| format!("gcc: {e}"))?;
+    if !status.success() {
+        return Err("gcc failed".into());
+    }
+    let out = std::process::Command::new(&exe)
+        .arg(cycles.to_string())
+        .output()
+        .map_err(|e| e.to_string())?;
+    String::from_utf8_lossy(&out.stdout)
+        .trim()
+        .parse()
+        .map_err(|_| "bad output from the C kernel".to_string())
+}
+
+/// Runs every kernel (or only `only`) and prints the table.
+pub fn run_kernels(cycles: u64, only: Option<&str>) {
+    let mut sts: Vec<PathBuf> = std::fs::read_dir(kernels_dir())
+        .map(|d| {
+            d.flatten()
+                .map(|e| e.path())
+                .filter(|p| p.extension().is_some_and(|x| x == "st"))
+                .collect()
+        })
+        .unwrap_or_default();
+    sts.sort();
+    if let Some(k) = only {
+        sts.retain(|p| p.file_stem().is_some_and(|s| s == k));
+    }
+    println!(
+        "{:<10} {:>14} {:>14} {:>8}",
+        "kernel", "VM ns/cycle", "C ns/cycle", "VM/C"
+    );
+    for st in sts {
+        let name = st
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or("?")
+            .to_string();
+        let vm = vm_time(&st, cycles);
+        let c = c_time(&st.with_extension("c"), cycles);
+        match (vm, c) {
+            (Ok(v), Ok(c)) => println!("{name:<10} {v:>14.0} {c:>14.0} {:>8.1}", v / c),
+            (Ok(v), Err(e)) => println!("{name:<10} {v:>14.0} {:>14} {:>8}  ({e})", "-", "-"),
+            (Err(e), _) => println!("{name:<10} failed: {e}"),
+        }
+    }
+    if only.is_none_or(|k| k == "scan") {
+        // One scan of a mid-size program: the generated 5000-line project
+        // (70 function blocks with timers, CASE, loops; 50 called per scan).
+        let mut sm = stc_diagnostics::SourceMap::new();
+        sm.add("scan.st", stc_bench::generate(5_000));
+        match vm_time_of(sm, Vec::new(), cycles, Some("start")) {
+            Ok(v) => println!("{:<10} {v:>14.0} {:>14} {:>8}", "scan", "-", "-"),
+            Err(e) => println!("scan       failed: {e}"),
+        }
+    }
+}

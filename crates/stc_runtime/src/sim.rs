@@ -1,0 +1,842 @@
+//! A simulation: the machine, the plan, the watched places and the inputs
+//! (`--set`, stimulus rows), advanced one cycle at a time.
+//!
+//! One cycle k (1-based) at time (k - 1) * tick:
+//! 1. the stimulus rows of cycle k are written;
+//! 2. the SINGLE variables of event tasks are sampled (a task fires when
+//!    its variable is TRUE now and was FALSE at the start of the previous
+//!    cycle; before cycle 1 every SINGLE counts as FALSE);
+//! 3. the due tasks run in plan order, then the program instances without
+//!    a task; each program instance has its input connections copied in
+//!    just before it runs and its output connections copied out just after.
+//!
+//! A fault stops the cycle where it happens. [`run`] then reports the last
+//! completed cycle: as the simulation is deterministic, it replays the
+//! cycles before the fault on a fresh machine rather than copying the
+//! memory before every cycle, so a run without faults pays nothing for it.
+
+use std::sync::Arc;
+
+use stc_ir::FaultKind;
+use stc_syntax::literal::AddrArea;
+use stc_values::{convert, Value};
+use stc_vm::image::{Image, Source, TypeRef, VarKind};
+use stc_vm::{Machine, VmFault};
+
+use crate::error::{Error, Result};
+use crate::path::{Place, Scope, View};
+use crate::report::Report;
+use crate::schedule::{choose, Plan};
+use crate::stimulus::Stimulus;
+use crate::value::{parse_for, read};
+
+/// The default watchdog: VM instructions per program run.
+pub const DEFAULT_MAX_STEPS: u64 = 100_000_000;
+
+/// How to set a simulation up (the options of `stc run` that are not about
+/// printing).
+#[derive(Clone, Debug)]
+pub struct Options {
+    /// `--config NAME`
+    pub config: Option<String>,
+    /// `--program TYPE`
+    pub program: Option<String>,
+    /// `--tick`, in nanoseconds; `None`: the default of the plan.
+    pub tick_ns: Option<i64>,
+    /// `--set PATH=VALUE`, in order.
+    pub sets: Vec<String>,
+    /// `--watch` paths; `None`: the default list.
+    pub watch: Option<Vec<String>>,
+    /// `--max-steps`
+    pub max_steps: u64,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            config: None,
+            program: None,
+            tick_ns: None,
+            sets: Vec::new(),
+            watch: None,
+            max_steps: DEFAULT_MAX_STEPS,
+        }
+    }
+}
+
+/// Writes to do before a cycle: the rows of one cycle of a stimulus file.
+#[derive(Clone, Debug)]
+struct Inputs {
+    cycle: u64,
+    writes: Vec<(Place, Value)>,
+}
+
+pub struct Simulation {
+    image: Arc<Image>,
+    machine: Machine,
+    plan: Plan,
+    watch: Vec<Place>,
+    sets: Vec<(Place, Value)>,
+    stimulus: Vec<Inputs>,
+    next_input: usize,
+    /// Per task of the plan: its SINGLE at the start of the previous cycle.
+    single_prev: Vec<bool>,
+    completed: u64,
+    max_steps: u64,
+    fired: Vec<bool>,
+    order: Vec<usize>,
+    /// Per instance of the plan: the task it runs in (its watchdog budget).
+    task_of: Vec<Option<usize>>,
+}
+
+impl Simulation {
+    /// Chooses what runs, resolves every path, reads every value, and
+    /// applies `--set`: all mistakes in the options are found here, before
+    /// anything runs.
+    pub fn new(
+        image: Arc<Image>,
+        opts: &Options,
+        stimulus: Option<&Stimulus>,
+    ) -> Result<Simulation> {
+        let chosen = choose(&image, opts.config.as_deref(), opts.program.as_deref())?;
+        let plan = Plan::new(&image, chosen, opts.tick_ns)?;
+        let machine = Machine::new(Arc::clone(&image));
+        let scope = Scope {
+            image: &image,
+            instances: &plan.instances,
+            config: plan.config,
+        };
+
+        let mut sets = Vec::new();
+        for s in &opts.sets {
+            let (path, value) = s
+                .split_once('=')
+                .ok_or_else(|| Error::Option(format!("--set `{s}`: expected PATH=VALUE")))?;
+            let place = writable(scope.resolve(path)?)?;
+            let v = parse_for(&image, &place.view, value)
+                .map_err(|e| Error::Value(format!("--set {}: {e}", place.name)))?;
+            sets.push((place, v));
+        }
+
+        let mut inputs: Vec<Inputs> = Vec::new();
+        if let Some(st) = stimulus {
+            let err = |line: usize, message: String| Error::Stimulus {
+                file: st.file.clone(),
+                line,
+                message,
+            };
+            let mut columns = Vec::new();
+            for c in &st.columns {
+                let place = scope
+                    .resolve(c)
+                    .and_then(writable)
+                    .map_err(|e| err(st.header_line, e.to_string()))?;
+                columns.push(place);
+            }
+            for row in &st.rows {
+                let mut writes = Vec::new();
+                for (place, cell) in columns.iter().zip(&row.cells) {
+                    let Some(text) = cell else { continue };
+                    let v = parse_for(&image, &place.view, text)
+                        .map_err(|e| err(row.line, format!("{}: {e}", place.name)))?;
+                    writes.push((place.clone(), v));
+                }
+                match inputs.last_mut() {
+                    Some(last) if last.cycle == row.cycle => last.writes.extend(writes),
+                    _ => inputs.push(Inputs {
+                        cycle: row.cycle,
+                        writes,
+                    }),
+                }
+            }
+        }
+
+        let watch = match &opts.watch {
+            Some(paths) => {
+                let mut out: Vec<Place> = Vec::new();
+                for p in paths {
+                    let place = scope.resolve(p)?;
+                    if !out.iter().any(|q| q.name == place.name) {
+                        out.push(place);
+                    }
+                }
+                out
+            }
+            None => default_watch(&scope),
+        };
+
+        let tasks = plan.tasks.len();
+        let task_of = task_of(&plan);
+        let mut sim = Simulation {
+            image,
+            machine,
+            plan,
+            watch,
+            sets,
+            stimulus: inputs,
+            next_input: 0,
+            single_prev: vec![false; tasks],
+            completed: 0,
+            max_steps: opts.max_steps,
+            fired: vec![false; tasks],
+            order: Vec::new(),
+            task_of,
+        };
+        sim.apply_sets()?;
+        Ok(sim)
+    }
+
+    fn apply_sets(&mut self) -> Result<()> {
+        for (place, v) in &self.sets {
+            if !write(&mut self.machine, place, v) {
+                return Err(Error::Value(format!(
+                    "--set {}: the variable is outside the memory",
+                    place.name
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// The same simulation before its first cycle (after `--set`).
+    pub fn restart(&self) -> Simulation {
+        let mut sim = Simulation {
+            image: Arc::clone(&self.image),
+            machine: Machine::new(Arc::clone(&self.image)),
+            plan: self.plan.clone(),
+            watch: self.watch.clone(),
+            sets: self.sets.clone(),
+            stimulus: self.stimulus.clone(),
+            next_input: 0,
+            single_prev: vec![false; self.plan.tasks.len()],
+            completed: 0,
+            max_steps: self.max_steps,
+            fired: vec![false; self.plan.tasks.len()],
+            order: Vec::new(),
+            task_of: self.task_of.clone(),
+        };
+        // The same writes succeeded on the same fresh memory before.
+        let _ = sim.apply_sets();
+        sim
+    }
+
+    pub fn plan(&self) -> &Plan {
+        &self.plan
+    }
+
+    pub fn machine(&self) -> &Machine {
+        &self.machine
+    }
+
+    /// The watched places, in report order.
+    pub fn watch(&self) -> &[Place] {
+        &self.watch
+    }
+
+    /// Cycles completed so far.
+    pub fn completed(&self) -> u64 {
+        self.completed
+    }
+
+    /// The last cycle whose time is a valid TIME.
+    pub fn last_cycle(&self) -> u64 {
+        (i64::MAX / self.plan.tick_ns) as u64 + 1
+    }
+
+    /// Runs the next cycle.
+    pub fn run_cycle(&mut self) -> Result<(), VmFault> {
+        let k = self.completed + 1;
+        let now = self.plan.time_of(k).unwrap_or(i64::MAX);
+
+        while let Some(inputs) = self.stimulus.get(self.next_input) {
+            if inputs.cycle > k {
+                break;
+            }
+            for (place, v) in &inputs.writes {
+                write(&mut self.machine, place, v);
+            }
+            self.next_input += 1;
+        }
+
+        for (i, t) in self.plan.tasks.iter().enumerate() {
+            self.fired[i] = false;
+            if let Some(Source::Addr { offset, ty }) = &t.single {
+                let v = self
+                    .machine
+                    .read_value(*offset, *ty)
+                    .and_then(|v| v.as_int())
+                    .is_some_and(|i| i != 0);
+                self.fired[i] = v && !self.single_prev[i];
+                self.single_prev[i] = v;
+            }
+        }
+
+        let mut order = std::mem::take(&mut self.order);
+        self.plan.order_into(k, &self.fired, &mut order);
+        let result = self.run_instances(&order, now);
+        self.order = order;
+        result?;
+        self.completed = k;
+        Ok(())
+    }
+
+    fn run_instances(&mut self, order: &[usize], now: i64) -> Result<(), VmFault> {
+        // The watchdog budget is per task and cycle (a task-less program
+        // has its own).
+        let mut used = vec![0u64; self.plan.tasks.len()];
+        for &i in order {
+            let task = self.task_of.get(i).copied().flatten();
+            let budget = match task {
+                Some(t) => self.max_steps.saturating_sub(used[t]),
+                None => self.max_steps,
+            };
+            let inst = &self.plan.instances[i];
+            for (off, ty, Source::Addr { offset, ty: sty }) in &inst.inputs {
+                let dst = inst.offset.wrapping_add(*off);
+                copy(&self.image, &mut self.machine, *offset, *sty, dst, *ty)
+                    .map_err(|k| connection_fault(&self.image, inst.pou, k))?;
+            }
+            let n = self.machine.run_program(inst, now, budget)?;
+            if let Some(t) = task {
+                used[t] += n;
+            }
+            for (off, ty, Source::Addr { offset, ty: dty }) in &inst.outputs {
+                let src = inst.offset.wrapping_add(*off);
+                copy(&self.image, &mut self.machine, src, *ty, *offset, *dty)
+                    .map_err(|k| connection_fault(&self.image, inst.pou, k))?;
+            }
+        }
+        Ok(())
+    }
+
+    /// The watched values now, as the report of the last completed cycle.
+    pub fn report(&self) -> Report {
+        let mem = self.machine.memory();
+        Report {
+            cycle: self.completed,
+            time_ns: if self.completed == 0 {
+                0
+            } else {
+                self.plan.time_of(self.completed).unwrap_or(i64::MAX)
+            },
+            values: self
+                .watch
+                .iter()
+                .map(|p| {
+                    let v = match p.loc.address(mem) {
+                        Some(a) => read(&self.image, mem, a, &p.view),
+                        None => crate::value::Shown::Unreadable,
+                    };
+                    (p.name.clone(), v)
+                })
+                .collect(),
+        }
+    }
+}
+
+/// For each instance of a plan, the task it runs in.
+fn task_of(plan: &Plan) -> Vec<Option<usize>> {
+    let mut out = vec![None; plan.instances.len()];
+    for (t, task) in plan.tasks.iter().enumerate() {
+        for &i in &task.programs {
+            if let Some(slot) = out.get_mut(i) {
+                *slot = Some(t);
+            }
+        }
+    }
+    out
+}
+
+fn writable(place: Place) -> Result<Place> {
+    if place.constant {
+        Err(Error::Path(format!(
+            "`{}` is a CONSTANT and cannot be assigned",
+            place.name
+        )))
+    } else {
+        Ok(place)
+    }
+}
+
+/// Writes a value to a place; false when it is not in memory.
+fn write(machine: &mut Machine, place: &Place, v: &Value) -> bool {
+    let (Some(addr), View::Type(ty)) = (place.loc.address(machine.memory()), &place.view) else {
+        return false;
+    };
+    machine.write_value(addr, *ty, v)
+}
+
+/// Copies a connection: bytes when the types are the same, else the value
+/// converted (a program input INT from a SINT global).
+fn copy(
+    image: &Image,
+    m: &mut Machine,
+    src: u32,
+    src_ty: TypeRef,
+    dst: u32,
+    dst_ty: TypeRef,
+) -> Result<(), FaultKind> {
+    let (Some(sd), Some(dd)) = (
+        image.types.get(src_ty as usize),
+        image.types.get(dst_ty as usize),
+    ) else {
+        return Ok(());
+    };
+    if src_ty == dst_ty || sd == dd {
+        let n = image.type_size(src_ty).min(u32::MAX as u64) as u32;
+        // Most connections are scalars: no allocation for them.
+        let mut small = [0u8; 16];
+        if let Some(b) = m.read_bytes(src, n) {
+            if b.len() <= small.len() {
+                small[..b.len()].copy_from_slice(b);
+                m.write_bytes(dst, &small[..n as usize]);
+            } else {
+                let b = b.to_vec();
+                m.write_bytes(dst, &b);
+            }
+        }
+        return Ok(());
+    }
+    let elem = |t: TypeRef| image.scalar_of(t);
+    let Some(v) = m.read_value(src, src_ty) else {
+        return Ok(());
+    };
+    let v = match (elem(src_ty), elem(dst_ty)) {
+        (Some(from), Some(to)) if from != to => {
+            convert(from, to, &v).map_err(FaultKind::from_value_fault)?
+        }
+        _ => v,
+    };
+    m.write_value(dst, dst_ty, &v);
+    Ok(())
+}
+
+fn connection_fault(image: &Image, pou: u32, kind: FaultKind) -> VmFault {
+    VmFault {
+        kind,
+        pou: image
+            .pous
+            .get(pou as usize)
+            .map_or_else(|| "?".into(), |p| p.name.clone()),
+        file: "<configuration>".into(),
+        line: 0,
+        col: 0,
+    }
+}
+
+/// The default watch list: every VAR_OUTPUT of every program instance (in
+/// configuration order, then declaration order), then every located output
+/// variable (`%Q`): globals in declaration order, then those declared in
+/// the program instances.
+pub fn default_watch(scope: &Scope) -> Vec<Place> {
+    let image = scope.image;
+    let mut out: Vec<Place> = Vec::new();
+    let add = |out: &mut Vec<Place>, path: String| {
+        if let Ok(p) = scope.resolve(&path) {
+            if !out.iter().any(|q| q.name.eq_ignore_ascii_case(&p.name)) {
+                out.push(p);
+            }
+        }
+    };
+    for inst in scope.instances {
+        let Some(pou) = image.pous.get(inst.pou as usize) else {
+            continue;
+        };
+        for v in &pou.vars {
+            if v.kind == VarKind::Output && !v.in_frame {
+                add(&mut out, format!("{}.{}", inst.name, v.name));
+            }
+        }
+    }
+    for g in &image.globals {
+        let visible = g.config.is_none() || g.config == scope.config;
+        if visible
+            && g.location
+                .as_ref()
+                .is_some_and(|l| l.area == AddrArea::Output)
+        {
+            add(&mut out, g.name.clone());
+        }
+    }
+    for inst in scope.instances {
+        let Some(pou) = image.pous.get(inst.pou as usize) else {
+            continue;
+        };
+        for v in &pou.vars {
+            if v.location
+                .as_ref()
+                .is_some_and(|l| l.area == AddrArea::Output)
+            {
+                add(&mut out, format!("{}.{}", inst.name, v.name));
+            }
+        }
+    }
+    out
+}
+
+/// Something that paces cycles: nothing in simulation, the wall clock in
+/// real time ([`crate::realtime`]).
+pub trait Pacer {
+    /// Waits until cycle `k` is due; `false` stops the run before it.
+    fn before(&mut self, cycle: u64) -> bool;
+    /// Cycle `k` has run.
+    fn after(&mut self, cycle: u64);
+}
+
+/// Simulated time: cycles run back to back.
+pub struct Unpaced;
+
+impl Pacer for Unpaced {
+    fn before(&mut self, _cycle: u64) -> bool {
+        true
+    }
+    fn after(&mut self, _cycle: u64) {}
+}
+
+/// Runs up to `cycles` cycles (`None`: until the pacer stops), passing
+/// each report to print to `emit`: with `trace` one after every cycle,
+/// else one at the end. On a fault the last report is that of the last
+/// completed cycle (cycle 0, the state before the first cycle, when the
+/// first one faults), and the fault is returned.
+pub fn run(
+    sim: &mut Simulation,
+    cycles: Option<u64>,
+    trace: bool,
+    pacer: &mut dyn Pacer,
+    emit: &mut dyn FnMut(&Report),
+) -> Result<(), VmFault> {
+    let mut emitted_last = false;
+    loop {
+        let k = sim.completed() + 1;
+        if cycles.is_some_and(|n| k > n) || k > sim.last_cycle() || !pacer.before(k) {
+            break;
+        }
+        match sim.run_cycle() {
+            Ok(()) => {
+                pacer.after(k);
+                emitted_last = trace;
+                if trace {
+                    emit(&sim.report());
+                }
+            }
+            Err(fault) => {
+                if !emitted_last {
+                    let mut replay = sim.restart();
+                    for _ in 1..k {
+                        if replay.run_cycle().is_err() {
+                            break;
+                        }
+                    }
+                    emit(&replay.report());
+                }
+                return Err(fault);
+            }
+        }
+    }
+    if !emitted_last {
+        emit(&sim.report());
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::report::Format;
+    use crate::testing::*;
+
+    fn sim(opts: Options, stimulus: Option<&str>) -> Result<Simulation> {
+        let st = stimulus.map(|t| Stimulus::parse("s.csv", t).unwrap());
+        Simulation::new(Arc::new(sample()), &opts, st.as_ref())
+    }
+
+    fn watching(paths: &[&str]) -> Options {
+        Options {
+            watch: Some(paths.iter().map(|s| s.to_string()).collect()),
+            ..Options::default()
+        }
+    }
+
+    fn json_run(s: &mut Simulation, cycles: u64, trace: bool) -> (String, Option<VmFault>) {
+        let mut out = String::new();
+        let r = run(s, Some(cycles), trace, &mut Unpaced, &mut |r: &Report| {
+            out.push_str(&r.render(Format::Json))
+        });
+        (out, r.err())
+    }
+
+    #[test]
+    fn the_default_watch_list_is_program_outputs_then_located_outputs() {
+        let s = sim(Options::default(), None).unwrap();
+        let names: Vec<&str> = s.watch().iter().map(|p| p.name.as_str()).collect();
+        assert_eq!(
+            names,
+            [
+                "main.count",
+                "main.color",
+                "main.x",
+                "p2.n",
+                "p3.n",
+                "lamp",
+                "main.lamp_local"
+            ]
+        );
+        let s = sim(
+            Options {
+                program: Some("main".into()),
+                ..Options::default()
+            },
+            None,
+        )
+        .unwrap();
+        let names: Vec<&str> = s.watch().iter().map(|p| p.name.as_str()).collect();
+        assert_eq!(
+            names,
+            ["Main.count", "Main.color", "Main.x", "Main.lamp_local"]
+        );
+    }
+
+    #[test]
+    fn set_writes_before_the_first_cycle_and_reports_follow_the_watch_order() {
+        let mut s = sim(
+            Options {
+                sets: vec![
+                    "main.name='hi'".into(),
+                    "MAIN.color=Color#Green".into(),
+                    "main.m[2,1]=-4".into(),
+                    "%IX0.0=TRUE".into(),
+                    "main.tmr.PT=T#2s".into(),
+                ],
+                ..watching(&[
+                    "main.m[2]",
+                    "main.color",
+                    "main.name",
+                    "main.sensor",
+                    "main.tmr.pt",
+                    "main.color",
+                ])
+            },
+            None,
+        )
+        .unwrap();
+        assert_eq!(
+            s.report().to_json(),
+            "{\"cycle\":0,\"time\":\"T#0s\",\"values\":{\"main.m[2]\":[-4,0,0],\
+             \"main.color\":\"Color#Green\",\"main.name\":\"hi\",\"main.sensor\":true,\
+             \"main.tmr.PT\":\"T#2s\"}}\n"
+        );
+        let (out, fault) = json_run(&mut s, 3, false);
+        assert_eq!(fault, None);
+        assert!(
+            out.starts_with("{\"cycle\":3,\"time\":\"T#20ms\","),
+            "{out}"
+        );
+        assert_eq!(out.lines().count(), 1);
+    }
+
+    #[test]
+    fn bad_options_are_errors_before_anything_runs() {
+        let e = |sets: &[&str]| {
+            sim(
+                Options {
+                    sets: sets.iter().map(|s| s.to_string()).collect(),
+                    ..Options::default()
+                },
+                None,
+            )
+            .err()
+            .map(|e| e.to_string())
+        };
+        assert_eq!(e(&["g"]), Some("--set `g`: expected PATH=VALUE".into()));
+        assert_eq!(
+            e(&["K=1"]),
+            Some("`K` is a CONSTANT and cannot be assigned".into())
+        );
+        assert_eq!(
+            e(&["g=abc"]),
+            Some("--set g: `abc` cannot be read as INT (expected an ST literal within the type's range)".into())
+        );
+        assert_eq!(
+            e(&["nope=1"]),
+            Some("unknown variable `nope`: `nope` is neither a program instance (main, p2, p3) nor a global variable".into())
+        );
+        assert_eq!(e(&["main.name='a=b'"]), None);
+        let watch = sim(watching(&["main.zz"]), None)
+            .err()
+            .map(|e| e.to_string());
+        assert_eq!(
+            watch,
+            Some("unknown variable `main.zz`: `main` has no member `zz`".into())
+        );
+        let stim = |text: &str| {
+            sim(Options::default(), Some(text))
+                .err()
+                .map(|e| e.to_string())
+        };
+        assert_eq!(
+            stim("cycle,main.zz\n1,2\n"),
+            Some("s.csv:1: unknown variable `main.zz`: `main` has no member `zz`".into())
+        );
+        assert_eq!(
+            stim("cycle,g\n1,2\n2,x\n"),
+            Some("s.csv:3: g: `x` cannot be read as INT (expected an ST literal within the type's range)".into())
+        );
+        assert_eq!(
+            stim("cycle,K\n"),
+            Some("s.csv:1: `K` is a CONSTANT and cannot be assigned".into())
+        );
+    }
+
+    #[test]
+    fn stimuli_events_and_connections_follow_the_cycle_order() {
+        // p2 runs on rising edges of trig (sampled at cycle start, after
+        // the stimulus), copying g in; p3 runs every cycle, copying the
+        // SINT g_sint into its INT input.
+        let stimulus =
+            "cycle,g,trig,g_sint\n1,1,FALSE,-1\n2,2,TRUE,-2\n3,3,,-3\n4,4,FALSE,\n5,5,TRUE,-5\n";
+        let mut s = sim(watching(&["p2.inp", "p3.inp", "trig"]), Some(stimulus)).unwrap();
+        let (out, fault) = json_run(&mut s, 6, true);
+        assert_eq!(fault, None);
+        assert_eq!(
+            out,
+            "{\"cycle\":1,\"time\":\"T#0s\",\"values\":{\"p2.inp\":0,\"p3.inp\":-1,\"trig\":false}}\n\
+             {\"cycle\":2,\"time\":\"T#10ms\",\"values\":{\"p2.inp\":2,\"p3.inp\":-2,\"trig\":true}}\n\
+             {\"cycle\":3,\"time\":\"T#20ms\",\"values\":{\"p2.inp\":2,\"p3.inp\":-3,\"trig\":true}}\n\
+             {\"cycle\":4,\"time\":\"T#30ms\",\"values\":{\"p2.inp\":2,\"p3.inp\":-3,\"trig\":false}}\n\
+             {\"cycle\":5,\"time\":\"T#40ms\",\"values\":{\"p2.inp\":5,\"p3.inp\":-5,\"trig\":true}}\n\
+             {\"cycle\":6,\"time\":\"T#50ms\",\"values\":{\"p2.inp\":5,\"p3.inp\":-5,\"trig\":true}}\n"
+        );
+    }
+
+    #[test]
+    fn an_event_variable_true_from_the_start_fires_in_cycle_one() {
+        let mut s = sim(
+            Options {
+                sets: vec!["trig=TRUE".into(), "g=9".into()],
+                ..watching(&["p2.inp"])
+            },
+            None,
+        )
+        .unwrap();
+        let (out, _) = json_run(&mut s, 2, true);
+        assert_eq!(
+            out,
+            "{\"cycle\":1,\"time\":\"T#0s\",\"values\":{\"p2.inp\":9}}\n\
+             {\"cycle\":2,\"time\":\"T#10ms\",\"values\":{\"p2.inp\":9}}\n"
+        );
+    }
+
+    #[test]
+    fn outputs_are_copied_out_after_the_program_runs() {
+        let mut s = sim(
+            Options {
+                sets: vec!["p2.n=42".into(), "trig=TRUE".into()],
+                ..watching(&["top"])
+            },
+            None,
+        )
+        .unwrap();
+        assert_eq!(
+            json_run(&mut s, 1, false).0,
+            "{\"cycle\":1,\"time\":\"T#0s\",\"values\":{\"top\":42}}\n"
+        );
+    }
+
+    #[test]
+    fn a_fault_reports_the_last_completed_cycle() {
+        let stimulus = "cycle,g,main.flag\n1,1,FALSE\n2,2,\n3,3,TRUE\n";
+        let fault = VmFault {
+            kind: FaultKind::DivisionByZero,
+            pou: "Main".into(),
+            file: "main.st".into(),
+            line: 7,
+            col: 3,
+        };
+        let mut s = sim(watching(&["g"]), Some(stimulus)).unwrap();
+        let (out, f) = json_run(&mut s, 5, false);
+        assert_eq!(f.as_ref(), Some(&fault));
+        assert_eq!(
+            f.unwrap().to_string(),
+            "fault: division by zero in Main at main.st:7:3"
+        );
+        assert_eq!(
+            out,
+            "{\"cycle\":2,\"time\":\"T#10ms\",\"values\":{\"g\":2}}\n"
+        );
+        // With --trace the reports before the fault are all there is.
+        let mut s = sim(watching(&["g"]), Some(stimulus)).unwrap();
+        let (out, f) = json_run(&mut s, 5, true);
+        assert_eq!(f, Some(fault.clone()));
+        assert_eq!(
+            out,
+            "{\"cycle\":1,\"time\":\"T#0s\",\"values\":{\"g\":1}}\n\
+             {\"cycle\":2,\"time\":\"T#10ms\",\"values\":{\"g\":2}}\n"
+        );
+        // A fault in the first cycle reports the state before it.
+        let mut s = sim(
+            Options {
+                sets: vec!["main.flag=TRUE".into(), "g=4".into()],
+                ..watching(&["g"])
+            },
+            None,
+        )
+        .unwrap();
+        let (out, f) = json_run(&mut s, 5, true);
+        assert_eq!(f, Some(fault));
+        assert_eq!(
+            out,
+            "{\"cycle\":0,\"time\":\"T#0s\",\"values\":{\"g\":4}}\n"
+        );
+    }
+
+    #[test]
+    fn zero_cycles_report_the_initial_state() {
+        let mut s = sim(watching(&["K"]), None).unwrap();
+        assert_eq!(
+            json_run(&mut s, 0, false).0,
+            "{\"cycle\":0,\"time\":\"T#0s\",\"values\":{\"K\":5}}\n"
+        );
+        assert_eq!(
+            json_run(&mut s, 0, true).0,
+            "{\"cycle\":0,\"time\":\"T#0s\",\"values\":{\"K\":5}}\n"
+        );
+    }
+
+    #[test]
+    fn the_same_inputs_give_the_same_output() {
+        let stimulus = "cycle,g,trig\n1,1,TRUE\n3,7,FALSE\n4,,TRUE\n";
+        let go = || {
+            let mut s = sim(Options::default(), Some(stimulus)).unwrap();
+            json_run(&mut s, 6, true).0
+        };
+        assert_eq!(go(), go());
+    }
+
+    #[test]
+    fn the_last_cycle_keeps_time_in_range() {
+        let s = sim(
+            Options {
+                tick_ns: Some(i64::MAX / 4),
+                ..Options::default()
+            },
+            None,
+        )
+        .unwrap();
+        assert_eq!(s.last_cycle(), 5);
+        assert_eq!(s.plan().time_of(5), Some(i64::MAX / 4 * 4));
+    }
+
+    #[test]
+    fn size_of_covers_every_type() {
+        let img = sample();
+        assert_eq!(img.type_size(T_INT), 2);
+        assert_eq!(img.type_size(T_STRING), 12);
+        assert_eq!(img.type_size(T_WSTRING), 10);
+        assert_eq!(img.type_size(T_COLOR), 2);
+        assert_eq!(img.type_size(T_MAT), 12);
+        assert_eq!(img.type_size(T_POINT), 4);
+        assert_eq!(img.type_size(T_PTS), 8);
+        assert_eq!(img.type_size(T_TIMER), 48);
+        assert_eq!(img.type_size(999), 0);
+    }
+}

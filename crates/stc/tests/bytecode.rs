@@ -83,3 +83,32 @@ fn corrupted_files_are_rejected_not_run() {
         Err(stc_vm::format::LoadError::Invalid(_))
     ));
 }
+
+#[test]
+fn call_chains_deeper_than_the_interpreter_allows_are_refused() {
+    let chain = |n: usize| {
+        let mut src = String::new();
+        for i in 0..n {
+            let body = if i + 1 < n {
+                format!("F{i} := F{}(x + 1);", i + 1)
+            } else {
+                format!("F{i} := x;")
+            };
+            src.push_str(&format!(
+                "FUNCTION F{i} : INT\nVAR_INPUT x : INT; END_VAR\n{body}\nEND_FUNCTION\n"
+            ));
+        }
+        src.push_str("PROGRAM Main\nVAR_OUTPUT r : INT; END_VAR\nr := F0(0);\nEND_PROGRAM\n");
+        let mut sm = stc_diagnostics::SourceMap::new();
+        sm.add("deep.st", src);
+        let a =
+            driver::with_big_stack(move || driver::analyse(sm, Vec::new(), &Options::default()));
+        assert!(!a.all_diagnostics().iter().any(|d| d.is_error()));
+        let img = stc_vm::compile(&driver::lower(a)).expect("compiles");
+        stc_vm::format::decode(&stc_vm::format::encode(&img))
+    };
+    // Main plus 1 023 nested calls fits; one more level does not.
+    assert!(chain(1023).is_ok());
+    let err = chain(1024).unwrap_err();
+    assert!(err.to_string().contains("nest deeper"), "{err}");
+}

@@ -558,3 +558,24 @@ fn the_watchdog_budget_is_shared_by_the_programs_of_a_task() {
     assert_eq!(out.status, 3, "{}", out.stdout);
     assert!(out.stderr.starts_with("fault: watchdog"), "{}", out.stderr);
 }
+
+#[test]
+fn a_bytecode_file_runs_like_its_sources_and_a_damaged_one_is_refused() {
+    let s = Scratch::new("stbc", &[("main.st", COUNTER)]);
+    let (src, bin) = (s.path("main.st"), s.path("main.stbc"));
+    let built = stc::cli::run_args(&["stc", "build", &src, "--emit", "bytecode", "-o", &bin]);
+    assert_eq!(built.status, 0, "{}", built.stderr);
+    let from_source = stc(&[&src, "--cycles", "2", "--trace", "--format", "json"]);
+    let from_file = stc(&[&bin, "--cycles", "2", "--trace", "--format", "json"]);
+    assert_eq!(from_file.status, 0, "{}", from_file.stderr);
+    assert_eq!(from_file.stdout, from_source.stdout);
+    // One flipped byte: the checksum no longer matches.
+    let mut bytes = std::fs::read(&bin).unwrap();
+    let mid = bytes.len() / 2;
+    bytes[mid] ^= 0x40;
+    std::fs::write(&bin, &bytes).unwrap();
+    let out = stc(&[&bin]);
+    assert_eq!(out.status, 2, "{}", out.stderr);
+    assert!(out.stderr.contains("checksum"), "{}", out.stderr);
+    assert!(out.stdout.is_empty());
+}

@@ -26,7 +26,8 @@ enum Trap {
     Invalid,
 }
 
-const MAX_CALL_DEPTH: usize = 1024;
+/// The deepest chain of calls (the verifier refuses deeper call graphs).
+pub(crate) const MAX_CALL_DEPTH: usize = 1024;
 
 trait Scalar: Sized + Copy {
     const N: usize;

@@ -117,6 +117,35 @@ pub fn verify(img: &Image) -> Result<(), String> {
             }
         }
     }
+    // Calls nest no deeper than the interpreter allows (longest chain in
+    // the acyclic call graph, from its sinks up).
+    let mut depth = vec![0usize; img.pous.len()];
+    let mut done = vec![false; img.pous.len()];
+    for s in 0..img.pous.len() {
+        let mut stack = vec![(s, false)];
+        while let Some((v, expanded)) = stack.pop() {
+            if done[v] {
+                continue;
+            }
+            if expanded {
+                depth[v] = 1 + edges[v].iter().map(|&w| depth[w]).max().unwrap_or(0);
+                done[v] = true;
+            } else {
+                stack.push((v, true));
+                stack.extend(edges[v].iter().filter(|&&w| !done[w]).map(|&w| (w, false)));
+            }
+        }
+    }
+    if let Some(p) = depth
+        .iter()
+        .position(|&d| d > crate::interp::MAX_CALL_DEPTH)
+    {
+        return Err(format!(
+            "calls from `{}` nest deeper than {} levels",
+            img.pous[p].name,
+            crate::interp::MAX_CALL_DEPTH
+        ));
+    }
     // Program instances, globals, the process image.
     let data = img.data_size as u64;
     let abs_end = data + img.consts.len() as u64;

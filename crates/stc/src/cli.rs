@@ -130,13 +130,22 @@ pub fn main(args: Vec<OsString>) -> u8 {
     let outcome = driver::with_big_stack(move || run(cli));
     let _ = out.write_all(outcome.stdout.as_bytes());
     let _ = err.write_all(outcome.stderr.as_bytes());
-    if let Some((path, bytes)) = &outcome.file {
-        if let Err(e) = std::fs::write(path, bytes) {
-            let _ = writeln!(err, "error: cannot write {}: {e}", path.display());
-            return EXIT_USAGE;
-        }
+    if let Err(e) = write_outputs(&outcome) {
+        let _ = writeln!(err, "error: {e}");
+        return EXIT_USAGE;
     }
     outcome.status
+}
+
+/// Writes the file or directory tree a command produced.
+fn write_outputs(outcome: &Outcome) -> Result<(), String> {
+    if let Some((path, bytes)) = &outcome.file {
+        std::fs::write(path, bytes).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    }
+    if let Some(tree) = &outcome.tree {
+        crate::output::write_tree(&tree.0, &tree.1)?;
+    }
+    Ok(())
 }
 
 /// Runs a command line in-process and returns what it would print (files
@@ -145,10 +154,8 @@ pub fn run_args(args: &[&str]) -> Outcome {
     match Cli::try_parse_from(args) {
         Ok(cli) => {
             let outcome = driver::with_big_stack(move || run(cli));
-            if let Some((path, bytes)) = &outcome.file {
-                if let Err(e) = std::fs::write(path, bytes) {
-                    return usage_error(format!("cannot write {}: {e}", path.display()));
-                }
+            if let Err(e) = write_outputs(&outcome) {
+                return usage_error(e);
             }
             outcome
         }
@@ -164,10 +171,14 @@ pub fn run_args(args: &[&str]) -> Outcome {
                 String::new()
             },
             file: None,
+            tree: None,
             status: if e.use_stderr() { EXIT_USAGE } else { EXIT_OK },
         },
     }
 }
+
+/// A directory to write: its path and its files (name, contents).
+pub type Tree = (PathBuf, Vec<(String, String)>);
 
 /// What a command produced: text for the two streams, maybe a file, a status.
 #[derive(Default, Debug)]
@@ -175,6 +186,8 @@ pub struct Outcome {
     pub stdout: String,
     pub stderr: String,
     pub file: Option<(PathBuf, Vec<u8>)>,
+    /// A directory of files (`--emit c -o DIR`), written atomically.
+    pub tree: Option<Box<Tree>>,
     pub status: u8,
 }
 
@@ -261,6 +274,19 @@ fn run(cli: Cli) -> Outcome {
                         stc_vm::format::encode(&image)
                     }
                 }
+                Emit::C => {
+                    let Some(dir) = output else {
+                        return usage_error("--emit c writes a directory: give it with -o DIR");
+                    };
+                    match stc_codegen_c::generate(&module) {
+                        Ok(files) => o.tree = Some(Box::new((dir, files))),
+                        Err(e) => {
+                            o.stderr.push_str(&format!("{e}\n"));
+                            o.status = EXIT_ERRORS;
+                        }
+                    }
+                    return o;
+                }
                 other => {
                     return usage_error(
                         format!("--emit {other:?} is not implemented yet").to_lowercase(),
@@ -296,6 +322,7 @@ fn finish_with(
         stdout,
         stderr: driver::render(diags, sm, opts),
         file: None,
+        tree: None,
         status: if driver::failed(diags, opts) {
             EXIT_ERRORS
         } else {

@@ -6,5 +6,6 @@
 
 pub mod cli;
 pub mod driver;
+pub mod output;
 pub mod run;
 pub mod sources;

@@ -225,6 +225,7 @@ fn finish(stdout: String, mut stderr: String, result: Result<(), stc_vm::VmFault
         stdout,
         stderr,
         file: None,
+        tree: None,
         status,
     }
 }

@@ -59,7 +59,7 @@ fn directives(case: &Path) -> Result<Directives, String> {
                 d.has_run_line = true;
                 let words = shlex::split(rest)
                     .ok_or_else(|| format!("{at}: unbalanced quotes in `// run:`"))?;
-                d.options = with_stimulus_beside(words, &dir);
+                d.options = common::with_stimulus_beside(words, &dir);
             } else if let Some(rest) = line.strip_prefix("// expect-fault:") {
                 let (kind, l) = rest
                     .rsplit_once('@')
@@ -102,25 +102,6 @@ fn directives(case: &Path) -> Result<Directives, String> {
         }
     }
     Ok(d)
-}
-
-/// `--stimulus FILE` names a file beside the test file.
-fn with_stimulus_beside(words: Vec<String>, dir: &Path) -> Vec<String> {
-    let mut out = Vec::with_capacity(words.len());
-    let mut it = words.into_iter();
-    while let Some(w) = it.next() {
-        if w == "--stimulus" {
-            out.push(w);
-            if let Some(f) = it.next() {
-                out.push(dir.join(f).display().to_string());
-            }
-        } else if let Some(f) = w.strip_prefix("--stimulus=") {
-            out.push(format!("--stimulus={}", dir.join(f).display()));
-        } else {
-            out.push(w);
-        }
-    }
-    out
 }
 
 /// JSON equality with numbers compared by value (`1.0` equals `1`).

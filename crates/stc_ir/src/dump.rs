@@ -46,7 +46,7 @@ impl Dumper<'_> {
         let mut s = String::new();
         let info = self.m.types.get(t);
         match info.name {
-            Some(n) => s.push_str(self.m.name(n)),
+            Some(_) => s.push_str(self.m.type_name(t).unwrap_or("?")),
             None => match &info.kind {
                 stc_sema::TypeKind::Elem(e) => s.push_str(e.name()),
                 stc_sema::TypeKind::String { wide, len } => {
@@ -68,8 +68,8 @@ impl Dumper<'_> {
 
     fn var_name(&self, v: &crate::Var) -> String {
         match v.hidden {
-            Some(role) => format!("{}${role}", self.m.name(v.name)),
-            None => self.m.name(v.name).to_string(),
+            Some(role) => format!("{}${role}", self.m.spelled(v.name, v.span)),
+            None => self.m.spelled(v.name, v.span).to_string(),
         }
     }
 
@@ -79,7 +79,7 @@ impl Dumper<'_> {
             out,
             "{} {}{}",
             p.kind.keyword(),
-            self.m.name(p.name),
+            self.m.spelled(p.name, p.name_span),
             if p.is_std { " (standard)" } else { "" }
         );
         for v in &p.vars {
@@ -128,16 +128,26 @@ impl Dumper<'_> {
                 let fbp = &self.m.pous[fb.0 as usize];
                 let mut args: Vec<String> = inputs
                     .iter()
-                    .map(|(v, e)| format!("{} := {}", self.m.name(fbp.var(*v).name), self.expr(e)))
+                    .map(|(v, e)| {
+                        format!(
+                            "{} := {}",
+                            self.m.spelled(fbp.var(*v).name, fbp.var(*v).span),
+                            self.expr(e)
+                        )
+                    })
                     .collect();
                 args.extend(inouts.iter().map(|(v, p)| {
-                    format!("{} <-> {}", self.m.name(fbp.var(*v).name), self.place(p))
+                    format!(
+                        "{} <-> {}",
+                        self.m.spelled(fbp.var(*v).name, fbp.var(*v).span),
+                        self.place(p)
+                    )
                 }));
                 args.extend(outputs.iter().map(|o| {
                     let not = if o.negated { "NOT " } else { "" };
                     format!(
                         "{not}{} => {}",
-                        self.m.name(fbp.var(o.var).name),
+                        self.m.spelled(fbp.var(o.var).name, fbp.var(o.var).span),
                         self.place(&o.target)
                     )
                 }));
@@ -146,7 +156,7 @@ impl Dumper<'_> {
                     "{pad}call {}({}) : {}{at}",
                     self.place(instance),
                     args.join(", "),
-                    self.m.name(fbp.name)
+                    self.m.spelled(fbp.name, fbp.name_span)
                 );
             }
             StmtKind::Eval(e) => {
@@ -219,17 +229,20 @@ impl Dumper<'_> {
     fn place(&self, p: &Place) -> String {
         let mut s = match &p.root {
             Root::Var(v) => self.var_name(self.pou.var(*v)),
-            Root::Global(g) => format!("global {}", self.m.name(self.m.globals[g.0 as usize].name)),
+            Root::Global(g) => format!("global {}", {
+                let g = &self.m.globals[g.0 as usize];
+                self.m.spelled(g.name, g.span)
+            }),
             Root::Direct(a) => a.to_string(),
         };
         for proj in &p.proj {
             match proj {
                 Proj::Field(_) | Proj::FbVar(..) => {
                     let name = match proj {
-                        Proj::FbVar(fb, v) => self
-                            .m
-                            .name(self.m.pous[fb.0 as usize].var(*v).name)
-                            .to_string(),
+                        Proj::FbVar(fb, v) => {
+                            let var = self.m.pous[fb.0 as usize].var(*v);
+                            self.m.spelled(var.name, var.span).to_string()
+                        }
                         Proj::Field(i) => format!("#{i}"),
                         _ => String::new(),
                     };
@@ -276,19 +289,33 @@ impl Dumper<'_> {
                 let f = &self.m.pous[func.0 as usize];
                 let mut args: Vec<String> = inputs
                     .iter()
-                    .map(|(v, x)| format!("{} := {}", self.m.name(f.var(*v).name), self.expr(x)))
+                    .map(|(v, x)| {
+                        format!(
+                            "{} := {}",
+                            self.m.spelled(f.var(*v).name, f.var(*v).span),
+                            self.expr(x)
+                        )
+                    })
                     .collect();
                 args.extend(inouts.iter().map(|(v, p)| {
-                    format!("{} <-> {}", self.m.name(f.var(*v).name), self.place(p))
+                    format!(
+                        "{} <-> {}",
+                        self.m.spelled(f.var(*v).name, f.var(*v).span),
+                        self.place(p)
+                    )
                 }));
                 args.extend(outputs.iter().map(|o| {
                     format!(
                         "{} => {}",
-                        self.m.name(f.var(o.var).name),
+                        self.m.spelled(f.var(o.var).name, f.var(o.var).span),
                         self.place(&o.target)
                     )
                 }));
-                format!("{}({}):{t}", self.m.name(f.name), args.join(", "))
+                format!(
+                    "{}({}):{t}",
+                    self.m.spelled(f.name, f.name_span),
+                    args.join(", ")
+                )
             }
             ExprKind::Intrinsic { func, args } => {
                 let a: Vec<String> = args.iter().map(|x| self.expr(x)).collect();

@@ -76,9 +76,11 @@ impl Module {
 
     /// The name declared at `span` as spelled there (else as [`Module::name`]).
     pub fn spelled(&self, s: Symbol, span: Span) -> &str {
+        let name = self.name(s);
         match self.spellings.get(&span.lo) {
-            Some(t) => t,
-            None => self.name(s),
+            // (A compiler-made variable may carry another name's span.)
+            Some(t) if t.eq_ignore_ascii_case(name) => t,
+            _ => name,
         }
     }
 

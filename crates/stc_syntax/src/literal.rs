@@ -210,11 +210,13 @@ pub fn parse_duration(text: &str) -> Result<i64, LitError> {
         }
         let mut part = int_val * unit_ns;
         if let Some(f) = frac_part {
-            if f.is_empty() || f.contains('_') {
+            if f.is_empty() || !f.bytes().all(|b| b.is_ascii_digit()) {
                 return bad("malformed fraction");
             }
-            // Exact decimal fraction of the unit, truncated below 1 ns.
-            let digits: String = f.chars().take(30).collect();
+            // The decimal fraction of the unit, truncated below 1 ns. Its
+            // first 20 digits are used (below 1e-6 ns even for days), so
+            // the product stays far inside i128.
+            let digits = &f[..f.len().min(20)];
             let scale = 10i128.pow(digits.len() as u32);
             let frac: i128 = digits.parse().unwrap_or(0);
             part += frac * unit_ns / scale;

@@ -20,3 +20,19 @@ fn missing_then_followed_by_a_statement() {
         vec![Code::E0020]
     );
 }
+
+/// A fraction of 25 digits on a large unit overflowed the i128 product in
+/// `parse_duration` (found by the C runtime's differential tests); a
+/// fraction with a second point was read as 0.
+#[test]
+fn long_and_malformed_duration_fractions() {
+    assert_eq!(
+        stc_syntax::literal::parse_duration("T#1.99999999999999999999999999d").ok(),
+        Some(86_400_000_000_000 + 86_399_999_999_999)
+    );
+    assert!(codes(
+        "PROGRAM p VAR t : TIME := T#1.99999999999999999999999999d; END_VAR END_PROGRAM"
+    )
+    .is_empty());
+    assert!(stc_syntax::literal::parse_duration("T#1.2.3s").is_err());
+}

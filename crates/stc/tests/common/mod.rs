@@ -176,3 +176,40 @@ pub fn run_all(dir: &Path, mut check: impl FnMut(&Path) -> Result<(), String>) {
         );
     }
 }
+
+/// `--stimulus FILE` names a file beside the test file.
+pub fn with_stimulus_beside(words: Vec<String>, dir: &Path) -> Vec<String> {
+    let mut out = Vec::with_capacity(words.len());
+    let mut it = words.into_iter();
+    while let Some(w) = it.next() {
+        if w == "--stimulus" {
+            out.push(w);
+            if let Some(f) = it.next() {
+                out.push(dir.join(f).display().to_string());
+            }
+        } else if let Some(f) = w.strip_prefix("--stimulus=") {
+            out.push(format!("--stimulus={}", dir.join(f).display()));
+        } else {
+            out.push(w);
+        }
+    }
+    out
+}
+
+/// The options of a case's `// run:` line, split as a shell would, with
+/// stimulus files made absolute; `None` when it has no such line.
+pub fn run_options(case: &Path) -> Result<Option<Vec<String>>, String> {
+    for file in case_files(case) {
+        let text = std::fs::read_to_string(&file)
+            .map_err(|e| format!("cannot read {}: {e}", file.display()))?;
+        let dir = file.parent().unwrap_or(Path::new(".")).to_path_buf();
+        for line in text.lines() {
+            if let Some(rest) = line.trim().strip_prefix("// run:") {
+                let words = shlex::split(rest)
+                    .ok_or_else(|| format!("{}: unbalanced quotes in `// run:`", file.display()))?;
+                return Ok(Some(with_stimulus_beside(words, &dir)));
+            }
+        }
+    }
+    Ok(None)
+}

@@ -1,0 +1,19 @@
+//! Random well-typed IEC 61131-3 Structured Text programs, and the
+//! differential test that runs each on the bytecode VM (`stc run`) and
+//! through the C back end (`stc build --emit c`, `make sim`), which must
+//! print byte-identical reports.
+//!
+//! [`program`] turns a seed into a program (types, functions, function
+//! blocks, one or two programs, sometimes a configuration) with the
+//! options to run it; [`diff`] runs it on both back ends and compares.
+//! What the generator covers and how it keeps programs well-typed and
+//! terminating is described in `gen.rs` and `expr.rs`.
+
+pub mod cc_cache;
+pub mod diff;
+mod expr;
+mod gen;
+mod model;
+mod rng;
+
+pub use gen::{program, Generated, Size};

@@ -255,7 +255,7 @@ fn run(cli: Cli) -> Outcome {
             if driver::failed(&all, &opts) {
                 return o;
             }
-            let module = driver::lower(a);
+            let (module, sources) = driver::lower_keeping_sources(a);
             let bytes = match emit {
                 Emit::Ir => stc_ir::dump::dump(&module, false).into_bytes(),
                 Emit::Vmasm | Emit::Bytecode => {
@@ -278,7 +278,12 @@ fn run(cli: Cli) -> Outcome {
                     let Some(dir) = output else {
                         return usage_error("--emit c writes a directory: give it with -o DIR");
                     };
-                    match stc_codegen_c::generate(&module) {
+                    let locate = |sp: stc_diagnostics::Span| {
+                        sources
+                            .locate(sp.lo)
+                            .map(|(f, lc)| (f.name.clone(), lc.line, lc.col))
+                    };
+                    match stc_codegen_c::generate(&module, &locate) {
                         Ok(files) => o.tree = Some(Box::new((dir, files))),
                         Err(e) => {
                             o.stderr.push_str(&format!("{e}\n"));

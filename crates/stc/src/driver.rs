@@ -75,10 +75,16 @@ pub fn analyse(mut sources: SourceMap, diagnostics: Vec<Diagnostic>, opts: &Opti
 
 /// Lowers an analysed project without errors to the IR.
 pub fn lower(a: Analysed) -> stc_ir::Module {
+    lower_keeping_sources(a).0
+}
+
+/// The same, keeping the sources (to turn spans of the IR into positions).
+pub fn lower_keeping_sources(a: Analysed) -> (stc_ir::Module, SourceMap) {
     let Analysed {
         parsed, analysis, ..
     } = a;
-    stc_ir::lower(&parsed.ast, analysis, &parsed.interner, &parsed.sources)
+    let m = stc_ir::lower(&parsed.ast, analysis, &parsed.interner, &parsed.sources);
+    (m, parsed.sources)
 }
 
 /// Parses every file of the source map as one project.

@@ -14,44 +14,12 @@
 
 /* ---- strings ------------------------------------------------------------ */
 
-/* The length of a STRING (WSTRING) array. */
-static inline uint16_t stc_slen(const uint8_t *s)
-{
-    uint16_t n;
-    (void)memcpy(&n, s, sizeof n);
-    return n;
-}
-
-/* dst := src, truncated to the capacity of dst (a STRING assignment). */
-static inline void stc_sassign(uint8_t *dst, uint16_t cap, const uint8_t *src)
-{
-    uint16_t n = stc_slen(src);
-    if (n > cap) {
-        n = cap;
-    }
-    if (dst != src) {
-        (void)memmove(&dst[2], &src[2], (size_t)n);
-    }
-    (void)memcpy(dst, &n, sizeof n);
-}
-
-/* dst := src for WSTRING arrays. */
-static inline void stc_wsassign(uint16_t *dst, uint16_t cap, const uint16_t *src)
-{
-    uint16_t n = src[0];
-    if (n > cap) {
-        n = cap;
-    }
-    if (dst != src) {
-        (void)memmove(&dst[1], &src[1], (size_t)n * sizeof(uint16_t));
-    }
-    dst[0] = n;
-}
+/* (String assignment is stc_str_copy / stc_wstr_copy of stc_rt.h.) */
 
 /* Sets a STRING array to a constant (the bytes are Windows-1252). */
 static inline void stc_sconst(uint8_t *dst, const uint8_t *bytes, uint16_t n)
 {
-    (void)memcpy(dst, &n, sizeof n);
+    (void)memcpy(dst, (const uint8_t *)&n, sizeof n);
     (void)memcpy(&dst[2], bytes, (size_t)n);
 }
 
@@ -127,6 +95,17 @@ static inline uint32_t stc_step(uint32_t site)
     return out;
 #else
     (void)site;
+    return 0U;
+#endif
+}
+
+/* After a call of a POU that cannot fault: only the watchdog can have
+   stopped it (never, without STC_WATCHDOG). */
+static inline uint32_t stc_watchdog_tripped(void)
+{
+#ifdef STC_WATCHDOG
+    return (stc_fault_kind != 0U) ? 1U : 0U;
+#else
     return 0U;
 #endif
 }

@@ -26,7 +26,7 @@
 #include <stdint.h>
 
 /* Elementary types, in the order of stc_syntax::token::ElemType::ALL. */
-enum stc_elem {
+enum {
     STC_E_BOOL = 0, STC_E_SINT, STC_E_INT, STC_E_DINT, STC_E_LINT,
     STC_E_USINT, STC_E_UINT, STC_E_UDINT, STC_E_ULINT,
     STC_E_REAL, STC_E_LREAL,
@@ -37,7 +37,7 @@ enum stc_elem {
 };
 
 /* Kinds of type descriptors (stc_vm::image::TypeDesc). */
-enum stc_type_kind {
+enum {
     STC_TK_SCALAR = 0,   /* elem */
     STC_TK_STRING,       /* wide, cap */
     STC_TK_ENUM,         /* name, elem (base), values, count */
@@ -48,7 +48,7 @@ enum stc_type_kind {
 };
 
 /* Kinds of variables (stc_vm::image::VarKind). */
-enum stc_var_kind {
+enum {
     STC_VK_INPUT = 0, STC_VK_OUTPUT, STC_VK_INOUT, STC_VK_VAR, STC_VK_TEMP,
     STC_VK_EXTERNAL, STC_VK_GLOBAL, STC_VK_RESULT, STC_VK_HIDDEN,
     STC_VK_FIELD         /* a member of a STRUCT */

@@ -27,7 +27,7 @@
 /* ---- faults ---------------------------------------------------------- */
 
 /* Fault kinds; the texts `stc run` prints are in stc_fault_text(). */
-enum stc_fault_kind_e {
+enum {
     STC_FAULT_NONE = 0,
     STC_FAULT_DIVISION_BY_ZERO,  /* "division by zero" */
     STC_FAULT_INDEX,             /* "array index out of bounds" */
@@ -75,49 +75,41 @@ extern uint64_t stc_steps;
    implementation-defined conversion; gcc -O2 compiles each to nothing). */
 static inline int8_t stc_i8_of(uint8_t u)
 {
+    /* The same bits read as the signed type: exact-width integers are
+       two's complement, so every pattern is a value; memcpy is the
+       defined way to reinterpret (and compiles to nothing). */
     int8_t r;
-    if (u > 0x7FU) {
-        uint8_t c = (uint8_t)~u;
-        r = (int8_t)(-(int8_t)c - 1);
-    } else {
-        r = (int8_t)u;
-    }
+    (void)memcpy((uint8_t *)&r, (const uint8_t *)&u, sizeof r);
     return r;
 }
 
 static inline int16_t stc_i16_of(uint16_t u)
 {
+    /* The same bits read as the signed type: exact-width integers are
+       two's complement, so every pattern is a value; memcpy is the
+       defined way to reinterpret (and compiles to nothing). */
     int16_t r;
-    if (u > 0x7FFFU) {
-        uint16_t c = (uint16_t)~u;
-        r = (int16_t)(-(int16_t)c - 1);
-    } else {
-        r = (int16_t)u;
-    }
+    (void)memcpy((uint8_t *)&r, (const uint8_t *)&u, sizeof r);
     return r;
 }
 
 static inline int32_t stc_i32_of(uint32_t u)
 {
+    /* The same bits read as the signed type: exact-width integers are
+       two's complement, so every pattern is a value; memcpy is the
+       defined way to reinterpret (and compiles to nothing). */
     int32_t r;
-    if (u > 0x7FFFFFFFU) {
-        uint32_t c = ~u;
-        r = -(int32_t)c - 1;
-    } else {
-        r = (int32_t)u;
-    }
+    (void)memcpy((uint8_t *)&r, (const uint8_t *)&u, sizeof r);
     return r;
 }
 
 static inline int64_t stc_i64_of(uint64_t u)
 {
+    /* The same bits read as the signed type: exact-width integers are
+       two's complement, so every pattern is a value; memcpy is the
+       defined way to reinterpret (and compiles to nothing). */
     int64_t r;
-    if (u > 0x7FFFFFFFFFFFFFFFU) {
-        uint64_t c = ~u;
-        r = -(int64_t)c - 1;
-    } else {
-        r = (int64_t)u;
-    }
+    (void)memcpy((uint8_t *)&r, (const uint8_t *)&u, sizeof r);
     return r;
 }
 

@@ -38,6 +38,9 @@ struct Func {
     site: u32,
     /// Per enclosing loop: the label of its latch (when CONTINUE needs it).
     loops: Vec<Option<String>>,
+    /// Control variables of enclosing FOR loops with constant bounds, and
+    /// the range they stay in inside the loop body.
+    ranges: Vec<(VarId, i128, i128)>,
     next_label: u32,
 }
 
@@ -48,8 +51,15 @@ enum MetaKey {
     Pou(usize),
 }
 
+/// Marks the check after a call until the callee is known to fault or not.
+const CALL_CHECK: &str = "@CALLCHECK ";
+
+/// Finds the file, line and column of a span.
+pub type Locate<'a> = &'a dyn Fn(stc_diagnostics::Span) -> Option<(String, u32, u32)>;
+
 struct Gen<'a> {
     m: &'a Module,
+    locate: Locate<'a>,
     /// Type definitions (program.h), in dependency order.
     typedefs: String,
     forward: String,
@@ -64,6 +74,8 @@ struct Gen<'a> {
     consts: FxHashMap<(bool, Vec<u16>), String>,
     protos: String,
     bodies: String,
+    /// The body functions, by POU, until the checks after calls are known.
+    pou_bodies: Vec<(usize, String)>,
     sites: Vec<(String, String, u32, u32)>,
     site_map: FxHashMap<(usize, u32, u32), u32>,
     meta_types: Vec<String>,
@@ -81,7 +93,7 @@ struct Gen<'a> {
 }
 
 /// Generates the program of a module.
-pub fn program(m: &Module) -> Result<Program, Error> {
+pub fn program(m: &Module, locate: Locate<'_>) -> Result<Program, Error> {
     let mut contexts = Vec::new();
     for (c, conf) in m.configs.iter().enumerate() {
         for r in 0..conf.resources.len() {
@@ -90,6 +102,7 @@ pub fn program(m: &Module) -> Result<Program, Error> {
     }
     let mut g = Gen {
         m,
+        locate,
         typedefs: String::new(),
         forward: String::new(),
         defined: FxHashSet::default(),
@@ -101,6 +114,7 @@ pub fn program(m: &Module) -> Result<Program, Error> {
         consts: FxHashMap::default(),
         protos: String::new(),
         bodies: String::new(),
+        pou_bodies: Vec::new(),
         sites: Vec::new(),
         site_map: FxHashMap::default(),
         meta_types: Vec::new(),
@@ -138,6 +152,7 @@ impl<'a> Gen<'a> {
         for &p in &used {
             self.pou_body(p)?;
         }
+        self.resolve_call_checks();
         for &p in &used {
             if m.pous[p].kind != PouKind::Function {
                 self.init_fn(p)?;
@@ -438,9 +453,7 @@ impl<'a> Gen<'a> {
             let lv = if function { format!("f->{name}") } else { name };
             self.init_value(&lv, v.ty, v.init.as_ref(), None, 0)?;
         }
-        for s in &pou.body {
-            self.stmt(s)?;
-        }
+        self.block(&pou.body)?;
         let sig = self.signature(p);
         let mut out = format!("{sig}\n{{\n");
         for d in &self.f.decls {
@@ -451,8 +464,63 @@ impl<'a> Gen<'a> {
             out.push('\n');
         }
         out.push_str("}\n\n");
-        self.bodies.push_str(&out);
+        self.pou_bodies.push((p, out));
         Ok(())
+    }
+
+    /// The check after each call: the full fault check when the callee can
+    /// fault (directly, or through its own calls), else only the watchdog's
+    /// (which costs nothing without STC_WATCHDOG).
+    fn resolve_call_checks(&mut self) {
+        let n = self.m.pous.len();
+        let mut direct = vec![false; n];
+        let mut calls: Vec<Vec<usize>> = vec![Vec::new(); n];
+        for (p, text) in &self.pou_bodies {
+            direct[*p] = text.contains("if (stc_fault_kind != 0U)") || text.contains("stc_fault(");
+            for part in text.split(CALL_CHECK).skip(1) {
+                if let Some(q) = part.split('@').next().and_then(|x| x.parse::<usize>().ok()) {
+                    calls[*p].push(q);
+                }
+            }
+        }
+        let mut faults = direct;
+        loop {
+            let mut changed = false;
+            for p in 0..n {
+                if !faults[p]
+                    && calls[p]
+                        .iter()
+                        .any(|&q| faults.get(q).copied().unwrap_or(true))
+                {
+                    faults[p] = true;
+                    changed = true;
+                }
+            }
+            if !changed {
+                break;
+            }
+        }
+        for (_, text) in &mut self.pou_bodies {
+            let mut out = String::with_capacity(text.len());
+            let mut rest = text.as_str();
+            while let Some(i) = rest.find(CALL_CHECK) {
+                out.push_str(&rest[..i]);
+                let after = &rest[i + CALL_CHECK.len()..];
+                let (num, tail) = after.split_once('@').unwrap_or(("", after));
+                let q = num.parse::<usize>().ok();
+                if q.and_then(|q| faults.get(q).copied()).unwrap_or(true) {
+                    out.push_str("if (stc_fault_kind != 0U) { return; }");
+                } else {
+                    out.push_str("if (stc_watchdog_tripped() != 0U) { return; }");
+                }
+                rest = tail;
+            }
+            out.push_str(rest);
+            *text = out;
+        }
+        for (_, text) in std::mem::take(&mut self.pou_bodies) {
+            self.bodies.push_str(&text);
+        }
     }
 
     fn line(&mut self, s: String) {
@@ -482,10 +550,37 @@ impl<'a> Gen<'a> {
     }
 
     fn block(&mut self, stmts: &[Stmt]) -> Result<(), Error> {
-        for s in stmts {
+        for (k, s) in stmts.iter().enumerate() {
+            let range = for_range(&stmts[..k], s, &self.m.pous[self.f.pou]);
+            if let Some(r) = range {
+                self.f.ranges.push(r);
+            }
             self.stmt(s)?;
+            if range.is_some() {
+                self.f.ranges.pop();
+            }
         }
         Ok(())
+    }
+
+    /// The range of a variable in the code being generated, when it is the
+    /// control variable of an enclosing FOR with constant bounds.
+    fn range_of(&self, e: &Expr) -> Option<(i128, i128)> {
+        let ExprKind::Load(p) = &e.kind else {
+            return None;
+        };
+        let Root::Var(v) = p.root else {
+            return None;
+        };
+        if !p.proj.is_empty() {
+            return None;
+        }
+        self.f
+            .ranges
+            .iter()
+            .rev()
+            .find(|(x, _, _)| *x == v)
+            .map(|&(_, l, h)| (l, h))
     }
 
     fn stmt(&mut self, s: &Stmt) -> Result<(), Error> {
@@ -509,6 +604,13 @@ impl<'a> Gen<'a> {
                 else_body,
             } => {
                 let c = self.expr(cond)?;
+                if then_body.is_empty() && !else_body.is_empty() {
+                    // IF c THEN ELSE ... (WHILE's test): the negated test.
+                    self.open(format!("if ({c} == 0U) {{"));
+                    self.block(else_body)?;
+                    self.close("}");
+                    return Ok(());
+                }
                 self.open(format!("if ({c} != 0U) {{"));
                 self.block(then_body)?;
                 if else_body.is_empty() {
@@ -563,11 +665,12 @@ impl<'a> Gen<'a> {
                     self.block(&arm.body)?;
                 }
                 if any {
-                    if !default.is_empty() {
-                        self.f.depth = self.f.depth.saturating_sub(1);
-                        self.open("} else {".into());
-                        self.block(default)?;
+                    self.f.depth = self.f.depth.saturating_sub(1);
+                    self.open("} else {".into());
+                    if default.is_empty() {
+                        self.line("/* no arm selected */".into());
                     }
+                    self.block(default)?;
                     self.close("}");
                 } else {
                     self.block(default)?;
@@ -591,7 +694,10 @@ impl<'a> Gen<'a> {
                 if let Some(l) = &label {
                     self.line(format!("{l}: ;"));
                 }
+                // The control variable leaves its range in the latch.
+                let saved = std::mem::take(&mut self.f.ranges);
                 self.block(latch)?;
+                self.f.ranges = saved;
                 self.close("}");
                 Ok(())
             }
@@ -694,9 +800,22 @@ impl<'a> Gen<'a> {
                             flat.push(format!("{}U", pos.max(0)));
                             continue;
                         }
+                        let known = self.range_of(e).filter(|&(l, h)| *lo <= l && h <= *hi);
                         let i = self.expr(e)?;
                         let k_t = self.new_temp("uint32_t".into());
                         let site = self.f.site;
+                        if known.is_some() {
+                            // A FOR control variable whose bounds are inside
+                            // the array's: no check can fail.
+                            checks
+                                .push(format!("{k_t} = (uint32_t)((int64_t){i} - INT64_C({lo}));"));
+                            flat.push(if mult == 1 {
+                                k_t
+                            } else {
+                                format!("({k_t} * {mult}U)")
+                            });
+                            continue;
+                        }
                         let unsigned64 =
                             matches!(self.scalar(e.ty), Some(ElemType::Ulint | ElemType::Lword));
                         let call = if unsigned64 {
@@ -811,8 +930,8 @@ impl<'a> Gen<'a> {
             return Ok(());
         }
         match self.is_string(p.ty) {
-            Some((false, cap)) => self.line(format!("stc_sassign({lv}.s, {cap}U, {v});")),
-            Some((true, cap)) => self.line(format!("stc_wsassign({lv}.s, {cap}U, {v});")),
+            Some((false, cap)) => self.line(format!("stc_str_copy({lv}.s, {cap}U, {v});")),
+            Some((true, cap)) => self.line(format!("stc_wstr_copy({lv}.s, {cap}U, {v});")),
             None => {
                 let _ = vt;
                 self.line(format!("{lv} = {v};"));
@@ -871,7 +990,7 @@ impl<'a> Gen<'a> {
                         // The same string kind: truncated to the new capacity.
                         self.define(e.ty);
                         let t = self.new_temp(names::type_name(m, e.ty));
-                        let f = if tw { "stc_wsassign" } else { "stc_sassign" };
+                        let f = if tw { "stc_wstr_copy" } else { "stc_str_copy" };
                         self.line(format!("{f}({t}.s, {cap}U, {a});"));
                         return Ok(format!("{t}.s"));
                     }
@@ -943,11 +1062,29 @@ impl<'a> Gen<'a> {
                 let n = format!("K{}", self.consts.len());
                 self.strings.insert((false, bytes.len() as u32));
                 let _ = writeln!(self.data, "static stc_str_{} {n};", bytes.len());
-                let lit = c_bytes(bytes);
-                self.const_init.push(format!(
-                    "stc_sconst({n}.s, (const uint8_t *){lit}, {}U);",
-                    bytes.len()
-                ));
+                if bytes.iter().all(|&b| (0x20..0x7f).contains(&b)) {
+                    let lit = c_bytes(bytes);
+                    self.const_init.push(format!(
+                        "stc_sconst({n}.s, (const uint8_t *){lit}, {}U);",
+                        bytes.len()
+                    ));
+                } else {
+                    // Bytes outside printable ASCII as a table (no escape
+                    // sequences in literals: MISRA rule 4.1).
+                    let list: Vec<String> = bytes.iter().map(|b| format!("{b}U")).collect();
+                    let _ = writeln!(
+                        self.data,
+                        "static const uint8_t {n}_bytes[{}] = {{ {} }};",
+                        bytes.len().max(1),
+                        if list.is_empty() {
+                            "0U".to_string()
+                        } else {
+                            list.join(", ")
+                        }
+                    );
+                    self.const_init
+                        .push(format!("stc_sconst({n}.s, {n}_bytes, {}U);", bytes.len()));
+                }
                 self.consts.insert(key, n.clone());
                 Ok(format!("{n}.s"))
             }
@@ -1019,7 +1156,7 @@ impl<'a> Gen<'a> {
             ));
         }
         self.line(format!("{}(&{fr});", names::body_name(m, p)));
-        self.fault_return();
+        self.line(format!("{CALL_CHECK}{p}@"));
         for o in outputs {
             let var = callee.var(o.var);
             let src = format!("{fr}.{}", names::var_name(m, o.var.0 as usize, var));
@@ -1044,8 +1181,8 @@ impl<'a> Gen<'a> {
     /// `dst := val` for a destination of type `ty` (strings truncated).
     fn assign_value(&mut self, dst: &str, ty: TypeId, val: &str) -> Result<(), Error> {
         match self.is_string(ty) {
-            Some((false, cap)) => self.line(format!("stc_sassign({dst}.s, {cap}U, {val});")),
-            Some((true, cap)) => self.line(format!("stc_wsassign({dst}.s, {cap}U, {val});")),
+            Some((false, cap)) => self.line(format!("stc_str_copy({dst}.s, {cap}U, {val});")),
+            Some((true, cap)) => self.line(format!("stc_wstr_copy({dst}.s, {cap}U, {val});")),
             None => self.line(format!("{dst} = {val};")),
         }
         Ok(())
@@ -1097,7 +1234,7 @@ impl<'a> Gen<'a> {
             ));
         }
         self.line(format!("{}({ptr});", names::body_name(m, p)));
-        self.fault_return();
+        self.line(format!("{CALL_CHECK}{p}@"));
         for o in outputs {
             let var = fbp.var(o.var);
             let name = names::var_name(m, o.var.0 as usize, var);
@@ -1167,9 +1304,9 @@ impl<'a> Gen<'a> {
                 };
                 let k = self.string_const(&v)?;
                 if wide {
-                    self.line(format!("stc_wsassign({lv}.s, {len}U, {k});"));
+                    self.line(format!("stc_wstr_copy({lv}.s, {len}U, {k});"));
                 } else {
-                    self.line(format!("stc_sassign({lv}.s, {len}U, {k});"));
+                    self.line(format!("stc_str_copy({lv}.s, {len}U, {k});"));
                 }
             }
             TypeKind::Array { dims, elem } => {
@@ -1247,7 +1384,12 @@ impl<'a> Gen<'a> {
             let name = names::var_name(m, i, v);
             if v.storage == Storage::Ref {
                 if let Some(a) = v.location.as_ref().filter(|a| !a.is_incomplete()) {
-                    let slot = self.io_access(a, v.ty)?;
+                    let slot =
+                        self.io_access(a, v.ty)
+                            .map_err(|e| match (e, (self.locate)(v.span)) {
+                                (Error::Unsupported(w), Some((f, l, c))) => Error::At(f, l, c, w),
+                                (e, _) => e,
+                            })?;
                     self.line(format!("self->{name} = &{slot};"));
                 } else if v.section == Section::External {
                     let mut first = true;
@@ -2008,6 +2150,15 @@ impl Emit for Gen<'_> {
         self.fault_return();
     }
 
+    fn fail_if(&mut self, cond: &str, kind: &str) {
+        // The condition is tested where its operands are (in registers),
+        // not the fault flag after the fact.
+        let site = self.f.site;
+        self.line(format!(
+            "if ({cond}) {{ stc_fault({kind}, {site}U); return; }}"
+        ));
+    }
+
     fn site(&self) -> u32 {
         self.f.site
     }
@@ -2059,7 +2210,8 @@ pub(crate) fn c_str(s: &str) -> String {
             b'\\' => out.push_str("\\\\"),
             0x20..=0x7e => out.push(b as char),
             _ => {
-                let _ = write!(out, "\\{b:03o}");
+                // Each escape ends its own literal (MISRA rule 4.1).
+                let _ = write!(out, "\" \"\\{b:03o}\" \"");
             }
         }
     }
@@ -2257,6 +2409,55 @@ fn visit_calls(stmts: &[Stmt], f: &mut dyn FnMut(PouId)) {
             }
             _ => {}
         }
+    }
+}
+
+/// When `s` is the loop of a FOR with constant bounds (the IR sets the
+/// control variable and the hidden end just before it, and the body starts
+/// with the exit test), the control variable and its range in the body:
+/// the body cannot assign it (E0306).
+fn for_range(before: &[Stmt], s: &Stmt, pou: &stc_ir::Pou) -> Option<(VarId, i128, i128)> {
+    let StmtKind::Loop { body, .. } = &s.kind else {
+        return None;
+    };
+    let StmtKind::If { cond, .. } = &body.first()?.kind else {
+        return None;
+    };
+    let ExprKind::Binary(op, a, b) = &cond.kind else {
+        return None;
+    };
+    let (ExprKind::Load(pv), ExprKind::Load(pe)) = (&a.kind, &b.kind) else {
+        return None;
+    };
+    let (Root::Var(v), Root::Var(end)) = (&pv.root, &pe.root) else {
+        return None;
+    };
+    if pou.var(*end).hidden != Some("end") {
+        return None;
+    }
+    let konst = |target: VarId| {
+        before
+            .iter()
+            .rev()
+            .find_map(|st| match &st.kind {
+                StmtKind::Assign { place, value }
+                    if matches!(place.root, Root::Var(x) if x == target)
+                        && place.proj.is_empty() =>
+                {
+                    match &value.kind {
+                        ExprKind::Const(Value::Int(c)) => Some(Some(*c)),
+                        _ => Some(None),
+                    }
+                }
+                _ => None,
+            })
+            .flatten()
+    };
+    let (start, stop) = (konst(*v)?, konst(*end)?);
+    match op {
+        stc_values::BinOp::Gt => Some((*v, start, stop)),
+        stc_values::BinOp::Lt => Some((*v, stop, start)),
+        _ => None,
     }
 }
 

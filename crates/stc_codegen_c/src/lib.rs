@@ -113,9 +113,12 @@ clean:
 .PHONY: clean
 ";
 
-/// Every file of the output directory: (name, contents).
-pub fn generate(m: &Module) -> Result<Vec<(String, String)>, Error> {
-    let p = gen::program(m)?;
+pub use gen::Locate;
+
+/// Every file of the output directory: (name, contents). `locate` turns
+/// spans into positions for error messages.
+pub fn generate(m: &Module, locate: Locate<'_>) -> Result<Vec<(String, String)>, Error> {
+    let p = gen::program(m, locate)?;
     let mut files = vec![
         ("program.h".to_string(), p.header),
         ("program.c".to_string(), p.source),

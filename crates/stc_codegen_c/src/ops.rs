@@ -64,6 +64,13 @@ pub trait Emit {
     /// Appends the check that ends the current POU when a fault is
     /// pending (after a call of a function that can fault).
     fn fault_check(&mut self);
+    /// Appends: when `cond` holds, the fault `kind` (a C expression) and
+    /// the end of the POU. The default records the fault and checks.
+    fn fail_if(&mut self, cond: &str, kind: &str) {
+        let site = self.site();
+        self.stmt(format!("if ({cond}) {{ stc_fault({kind}, {site}U); }}"));
+        self.fault_check();
+    }
     /// The index in `stc_sites` of the statement being generated (the
     /// second argument of `stc_fault`).
     fn site(&self) -> u32;

@@ -623,23 +623,37 @@ impl<'a> Lowerer<'a> {
             },
         )];
         loop_body.extend(self.stmts(body));
-        let latch = vec![
-            at(
+        // With a constant step and a constant end the next value cannot
+        // overflow when the end leaves room for one more step: in the latch
+        // the control variable is at most the end (the body cannot change
+        // it, E0306), so the overflow test is left out.
+        let end_const = match self.a.consts.get(&to) {
+            Some(Value::Int(e)) => Some(*e),
+            _ => None,
+        };
+        let no_overflow = match (step_const, end_const) {
+            (Some(st), Some(e)) if st > 0 => e <= max - st,
+            (Some(st), Some(e)) if st < 0 => e >= min - st,
+            _ => false,
+        };
+        let mut latch = Vec::new();
+        if !no_overflow {
+            latch.push(at(
                 self,
                 StmtKind::If {
                     cond: overflow,
                     then_body: vec![at(self, StmtKind::Break)],
                     else_body: Vec::new(),
                 },
-            ),
-            at(
-                self,
-                StmtKind::Assign {
-                    place: place(v),
-                    value: bin(BinOp::Add, load(v), step_expr, ty),
-                },
-            ),
-        ];
+            ));
+        }
+        latch.push(at(
+            self,
+            StmtKind::Assign {
+                place: place(v),
+                value: bin(BinOp::Add, load(v), step_expr, ty),
+            },
+        ));
         out.push(at(
             self,
             StmtKind::Loop {

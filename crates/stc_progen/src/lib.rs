@@ -5,9 +5,10 @@
 //!
 //! [`program`] turns a seed into a program (types, functions, function
 //! blocks, one or two programs, sometimes a configuration) with the
-//! options to run it; [`diff`] runs it on both back ends and compares.
-//! What the generator covers and how it keeps programs well-typed and
-//! terminating is described in `gen.rs` and `expr.rs`.
+//! options to run it; [`diff`] runs it on both back ends and compares;
+//! [`cc_cache`] is the caching compiler driver that keeps the C side
+//! quick. What the generator covers and how it keeps programs well-typed
+//! and terminating is in the README, `gen.rs` and `expr.rs`.
 
 pub mod cc_cache;
 pub mod diff;

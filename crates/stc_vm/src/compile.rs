@@ -1193,32 +1193,35 @@ impl<'a> Compiler<'a> {
         latch: &[Stmt],
         top: u32,
     ) -> Result<Option<Instr>, CompileError> {
-        let [Stmt {
-            kind:
-                StmtKind::If {
-                    cond: ovf,
-                    then_body,
-                    else_body,
-                },
-            ..
-        }, inc @ Stmt {
-            kind: StmtKind::Assign { place, value },
-            ..
-        }] = latch
-        else {
+        // The latch: the overflow test (left out by the IR when it cannot
+        // fire), then the step.
+        let (ovf, inc) = match latch {
+            [Stmt {
+                kind:
+                    StmtKind::If {
+                        cond,
+                        then_body,
+                        else_body,
+                    },
+                ..
+            }, inc]
+                if else_body.is_empty()
+                    && matches!(
+                        then_body.as_slice(),
+                        [Stmt {
+                            kind: StmtKind::Break,
+                            ..
+                        }]
+                    ) =>
+            {
+                (Some(cond), inc)
+            }
+            [inc] => (None, inc),
+            _ => return Ok(None),
+        };
+        let StmtKind::Assign { place, value } = &inc.kind else {
             return Ok(None);
         };
-        if !else_body.is_empty()
-            || !matches!(
-                then_body.as_slice(),
-                [Stmt {
-                    kind: StmtKind::Break,
-                    ..
-                }]
-            )
-        {
-            return Ok(None);
-        }
         let simple = |p: &Place| matches!(p.root, Root::Var(_)) && p.proj.is_empty();
         let same = |a: &Place, b: &Place| match (&a.root, &b.root) {
             (Root::Var(x), Root::Var(y)) => x == y && simple(a) && simple(b),
@@ -1230,19 +1233,13 @@ impl<'a> Compiler<'a> {
         let (ExprKind::Load(px), ExprKind::Const(Value::Int(step))) = (&x.kind, &st.kind) else {
             return Ok(None);
         };
-        let ExprKind::Binary(oop, ov, ok) = &ovf.kind else {
-            return Ok(None);
-        };
-        let (ExprKind::Load(po), ExprKind::Const(Value::Int(k))) = (&ov.kind, &ok.kind) else {
-            return Ok(None);
-        };
         let ExprKind::Binary(top_op, tv, tend) = &test.kind else {
             return Ok(None);
         };
         let ExprKind::Load(pt) = &tv.kind else {
             return Ok(None);
         };
-        if !(same(place, px) && same(place, po) && same(place, pt)) {
+        if !(same(place, px) && same(place, pt)) {
             return Ok(None);
         }
         let ty = place.ty;
@@ -1252,11 +1249,27 @@ impl<'a> Compiler<'a> {
         else {
             return Ok(None);
         };
-        let up = match (oop, top_op) {
-            (BinOp::Gt, BinOp::Gt) if *step > 0 && *k == max - step => true,
-            (BinOp::Lt, BinOp::Lt) if *step < 0 && *k == min - step => false,
+        let up = match top_op {
+            BinOp::Gt if *step > 0 => true,
+            BinOp::Lt if *step < 0 => false,
             _ => return Ok(None),
         };
+        if let Some(ovf) = ovf {
+            let ExprKind::Binary(oop, ov, ok) = &ovf.kind else {
+                return Ok(None);
+            };
+            let (ExprKind::Load(po), ExprKind::Const(Value::Int(k))) = (&ov.kind, &ok.kind) else {
+                return Ok(None);
+            };
+            let fits = if up {
+                *oop == BinOp::Gt && *k == max - step
+            } else {
+                *oop == BinOp::Lt && *k == min - step
+            };
+            if !fits || !same(place, po) {
+                return Ok(None);
+            }
+        }
         if n.is_float() || n == Num::B || self.scalar(tend.ty) != self.scalar(ty) {
             return Ok(None);
         }

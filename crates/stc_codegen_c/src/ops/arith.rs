@@ -6,7 +6,7 @@
 //! produce, but `stc_values` defines) go through 64-bit patterns.
 
 use super::c::{
-    bits64, int_cast, misuse, paren, set, set_checked, signed_flag, wrap_bits, Rep, Val,
+    bits64, int_cast, misuse, paren, set, set_checked, signed_flag, wrap_bits, zero, Rep, Val,
 };
 use super::Emit;
 use stc_syntax::token::ElemType;
@@ -236,7 +236,18 @@ fn int_arith(e: &mut dyn Emit, op: BinOp, a: &Val, b: &Val, dst: &Val) {
         // The hot path: one inline function of stc_rt.h.
         if divides {
             let x = format!("stc_{name}_{}({}, {}, {site}U)", rr.sfx(), a.x, b.x);
-            return set_checked(e, dst, &x);
+            // By a literal other than zero nothing can fault: no check,
+            // so the C compiler is free to optimise the loop around it.
+            if literal_int(&b.x).is_some_and(|v| v != 0) {
+                return set(e, dst, &x);
+            }
+            // The divisor is tested where it is (in a register), not the
+            // fault flag after the fact: the POU ends at once on zero.
+            e.fail_if(
+                &format!("{} == {}", b.x, zero(rb)),
+                "(uint32_t)STC_FAULT_DIVISION_BY_ZERO",
+            );
+            return set(e, dst, &x);
         }
         return set(
             e,
@@ -454,4 +465,28 @@ pub(crate) fn chain(e: &mut dyn Emit, op: BinOp, args: &[Val], dst: &Val) {
         format!("(uint8_t)({})", parts.join(" & "))
     };
     store_bool(e, &x, dst);
+}
+
+/// The value of an integer literal as the generator writes them
+/// (`((int32_t)7)`, `((uint16_t)7U)`, `((int64_t)-7LL)`).
+fn literal_int(x: &str) -> Option<i128> {
+    let inner = x.strip_prefix("((")?.strip_suffix(')')?;
+    let (_, num) = inner.split_once(')')?;
+    let num = num.trim_end_matches(['U', 'L']);
+    num.parse().ok()
+}
+
+#[cfg(test)]
+mod literal_tests {
+    use super::literal_int;
+
+    #[test]
+    fn literals_are_recognised_and_nothing_else() {
+        assert_eq!(literal_int("((int32_t)7)"), Some(7));
+        assert_eq!(literal_int("((uint16_t)7U)"), Some(7));
+        assert_eq!(literal_int("((int64_t)-7LL)"), Some(-7));
+        assert_eq!(literal_int("((uint64_t)0ULL)"), Some(0));
+        assert_eq!(literal_int("self->v_x"), None);
+        assert_eq!(literal_int("((int32_t)a)"), None);
+    }
 }

@@ -155,15 +155,17 @@ pub(crate) fn lit(r: Rep, v: i128) -> String {
                 format!("{v}")
             }
         }
+        // Plain suffixed literals rather than INT64_C/UINT64_C, whose
+        // expansion hides the `U` from MISRA checkers (rule 7.2).
         Rep::I64 => {
             if v == i128::from(i64::MIN) {
-                "INT64_MIN".into()
+                "(-9223372036854775807LL - 1LL)".into()
             } else {
-                format!("INT64_C({v})")
+                format!("{v}LL")
             }
         }
         Rep::U8 | Rep::U16 | Rep::U32 => format!("{v}U"),
-        Rep::U64 => format!("UINT64_C({v})"),
+        Rep::U64 => format!("{v}ULL"),
         Rep::F32 => format!("{v}.0f"),
         Rep::F64 => format!("{v}.0"),
     }

@@ -16,6 +16,7 @@
  * With --cycles N every periodic task runs N cycles, then the program
  * prints a summary and exits; without it, it runs until SIGINT.
  */
+#include <errno.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -112,7 +113,7 @@ static int stc_rt_run_program(const stc_program *p)
         fault = stc_rt_copy((unsigned char *)p->data + c->inst_offset, c->type, c->data, c->data_type);
     }
     if (fault != 0U) {
-        if (stc_fault_kind != 0U && stc_fault_site < stc_n_sites) {
+        if ((stc_fault_kind != 0U) && (stc_fault_site < stc_n_sites)) {
             const stc_site *s = &stc_sites[stc_fault_site];
             (void)fprintf(stderr, "fault: %s in %s at %s:%u:%u\n", stc_fault_text(stc_fault_kind),
                           s->pou, s->file, (unsigned)s->line, (unsigned)s->col);
@@ -175,7 +176,10 @@ static void stc_rt_periodic(void *arg)
             stc_port_lock();
             v = stc_rt_single(t->task);
             stc_port_unlock();
-            run = ((v != 0U) && (t->single_prev == 0U)) ? 1 : 0;
+            run = 0;
+            if ((v != 0U) && (t->single_prev == 0U)) {
+                run = 1;
+            }
             t->single_prev = v;
         }
         if (run != 0) {
@@ -270,24 +274,40 @@ static int stc_rt_plan(const char *config)
     return 0;
 }
 
+/* A decimal count of an option. */
+static uint64_t stc_rt_count(const char *text)
+{
+    errno = 0;
+    uint64_t v = (uint64_t)strtoull(text, NULL, 10);
+    if (errno != 0) {
+        v = 0U;
+    }
+    return v;
+}
+
 int main(int argc, char **argv)
 {
-    int a;
+    int a = 1;
     int status = 0;
     uint32_t k;
     const char *config = NULL;
-    for (a = 1; a < argc; a++) {
-        if ((strcmp(argv[a], "--cycles") == 0) && ((a + 1) < argc)) {
-            stc_rt_cycles = strtoull(argv[a + 1], NULL, 10);
-            a++;
-        } else if ((strcmp(argv[a], "--config") == 0) && ((a + 1) < argc)) {
+    while (a < argc) {
+        int value = 0;
+        if ((a + 1) < argc) {
+            value = 1;
+        }
+        if ((strcmp(argv[a], "--cycles") == 0) && (value != 0)) {
+            stc_rt_cycles = stc_rt_count(argv[a + 1]);
+            a += 2;
+        } else if ((strcmp(argv[a], "--config") == 0) && (value != 0)) {
             config = argv[a + 1];
-            a++;
-        } else if ((strcmp(argv[a], "--max-steps") == 0) && ((a + 1) < argc)) {
-            stc_rt_max_steps = strtoull(argv[a + 1], NULL, 10);
-            a++;
+            a += 2;
+        } else if ((strcmp(argv[a], "--max-steps") == 0) && (value != 0)) {
+            stc_rt_max_steps = stc_rt_count(argv[a + 1]);
+            a += 2;
         } else if (strcmp(argv[a], "--quiet") == 0) {
             stc_rt_quiet = 1;
+            a += 1;
         } else {
             (void)fprintf(stderr, "usage: rt [--cycles N] [--config NAME] [--max-steps N] [--quiet]\n");
             return 2;
@@ -310,6 +330,8 @@ int main(int argc, char **argv)
             (void)fprintf(stderr,
                           "warning: task %s runs with normal scheduling (SCHED_FIFO not permitted)\n",
                           t->name);
+        } else {
+            /* real-time scheduling, or quiet */
         }
     }
     stc_port_join_all();

@@ -66,6 +66,8 @@ struct Gen<'a> {
     defined: FxHashSet<TypeId>,
     defined_pous: FxHashSet<usize>,
     array_names: FxHashSet<String>,
+    /// The `static const` tables of CONSTANT arrays (see `const_table`).
+    const_tables: FxHashSet<String>,
     strings: FxHashSet<(bool, u32)>,
     /// File-scope data of program.c.
     data: String,
@@ -108,6 +110,7 @@ pub fn program(m: &Module, locate: Locate<'_>) -> Result<Program, Error> {
         defined: FxHashSet::default(),
         defined_pous: FxHashSet::default(),
         array_names: FxHashSet::default(),
+        const_tables: FxHashSet::default(),
         strings: FxHashSet::default(),
         data: String::new(),
         const_init: Vec::new(),
@@ -747,13 +750,68 @@ impl<'a> Gen<'a> {
         }
     }
 
+    /// A CONSTANT array of elementary values of the current POU as a
+    /// `static const` table (its reads can then be folded by the C
+    /// compiler); the variable itself still holds the same values for the
+    /// harness.
+    fn const_table(&mut self, v: VarId) -> Option<String> {
+        let m = self.m;
+        let var = m.pous[self.f.pou].var(v);
+        if !var.constant || var.storage == Storage::Ref {
+            return None;
+        }
+        let TypeKind::Array { dims, elem } = m.types.kind(var.ty) else {
+            return None;
+        };
+        let e = self
+            .scalar(*elem)
+            .filter(|e| !matches!(e, ElemType::String | ElemType::Wstring))?;
+        let name = format!("KC{}_{}", self.f.pou, v.0);
+        if !self.const_tables.contains(&name) {
+            let n = array_count(dims) as usize;
+            let list = match &var.init {
+                Some(InitValue::Array(l)) => l.clone(),
+                _ => Vec::new(),
+            };
+            let default = match m.types.kind(*elem) {
+                TypeKind::Subrange { lo, .. } => Value::Int(*lo),
+                TypeKind::Enum { values, .. } => Value::Int(values.first().map_or(0, |x| x.value)),
+                _ => stc_values::default_value(e),
+            };
+            let mut items = Vec::with_capacity(n);
+            for i in 0..n {
+                let val = match list.get(i) {
+                    Some(Some(InitValue::Scalar(x))) => x.clone(),
+                    Some(Some(_)) => return None,
+                    _ => default.clone(),
+                };
+                items.push(literal(e, &val));
+            }
+            self.define(var.ty);
+            let _ = writeln!(
+                self.data,
+                "static const {} {name} = {{ {{ {} }} }};",
+                names::type_name(m, var.ty),
+                items.join(", ")
+            );
+            self.const_tables.insert(name.clone());
+        }
+        Some(name)
+    }
+
     /// The C lvalue of a place, with its index checks emitted (or, with
     /// `defer`, returned to be emitted later). A bit part is not applied
     /// here (see [`Gen::load_place`] and [`Gen::store_place`]).
     fn place(&mut self, p: &Place, defer: Option<&mut Vec<String>>) -> Result<String, Error> {
         let m = self.m;
         let (mut lv, mut ty) = match &p.root {
-            Root::Var(v) => (self.var_lvalue(*v), m.pous[self.f.pou].var(*v).ty),
+            Root::Var(v) => (
+                match self.const_table(*v) {
+                    Some(k) => k,
+                    None => self.var_lvalue(*v),
+                },
+                m.pous[self.f.pou].var(*v).ty,
+            ),
             Root::Global(g) => (global_lvalue(m, g.0 as usize), m.globals[g.0 as usize].ty),
             Root::Direct(a) => (self.io_access(a, addr_type(m, a))?, addr_type(m, a)),
         };
@@ -1477,7 +1535,7 @@ impl<'a> Gen<'a> {
                     add_io(a, &mut io);
                 }
             }
-            visit_places(&p.body, &mut |pl: &Place| {
+            stc_ir::visit::places(&p.body, &mut |pl: &Place| {
                 if let Root::Direct(a) = &pl.root {
                     add_io(a, &mut io);
                 }
@@ -2346,70 +2404,9 @@ fn used_pous(m: &Module) -> Vec<bool> {
         for v in &pou.vars {
             type_pous(m, v.ty, &mut work, &mut seen_types);
         }
-        visit_calls(&pou.body, &mut |c| work.push(c.0 as usize));
+        stc_ir::visit::calls(&pou.body, &mut |c| work.push(c.0 as usize));
     }
     used
-}
-
-fn visit_calls(stmts: &[Stmt], f: &mut dyn FnMut(PouId)) {
-    fn expr(e: &Expr, f: &mut dyn FnMut(PouId)) {
-        match &e.kind {
-            ExprKind::CallFn { func, inputs, .. } => {
-                f(*func);
-                inputs.iter().for_each(|(_, e)| expr(e, f));
-            }
-            ExprKind::Unary(_, x) | ExprKind::Convert(x) => expr(x, f),
-            ExprKind::Check { value, .. } => expr(value, f),
-            ExprKind::Binary(_, x, y) => {
-                expr(x, f);
-                expr(y, f);
-            }
-            ExprKind::Intrinsic { args, .. } => args.iter().for_each(|a| expr(a, f)),
-            ExprKind::Load(p) => {
-                for pr in &p.proj {
-                    if let Proj::Index(idx) = pr {
-                        idx.iter().for_each(|(e, _, _)| expr(e, f));
-                    }
-                }
-            }
-            ExprKind::Const(_) | ExprKind::CurTime => {}
-        }
-    }
-    for s in stmts {
-        match &s.kind {
-            StmtKind::Assign { value, .. } => expr(value, f),
-            StmtKind::CallFb { fb, inputs, .. } => {
-                f(*fb);
-                inputs.iter().for_each(|(_, e)| expr(e, f));
-            }
-            StmtKind::Eval(e) => expr(e, f),
-            StmtKind::If {
-                cond,
-                then_body,
-                else_body,
-            } => {
-                expr(cond, f);
-                visit_calls(then_body, f);
-                visit_calls(else_body, f);
-            }
-            StmtKind::Switch {
-                selector,
-                arms,
-                default,
-            } => {
-                expr(selector, f);
-                for a in arms {
-                    visit_calls(&a.body, f);
-                }
-                visit_calls(default, f);
-            }
-            StmtKind::Loop { body, latch } => {
-                visit_calls(body, f);
-                visit_calls(latch, f);
-            }
-            _ => {}
-        }
-    }
 }
 
 /// When `s` is the loop of a FOR with constant bounds (the IR sets the
@@ -2509,84 +2506,4 @@ fn uses_continue(stmts: &[Stmt]) -> bool {
         // A nested loop's CONTINUE is its own.
         _ => false,
     })
-}
-
-fn visit_places(stmts: &[Stmt], f: &mut dyn FnMut(&Place)) {
-    fn expr(e: &Expr, f: &mut dyn FnMut(&Place)) {
-        match &e.kind {
-            ExprKind::Load(p) => place(p, f),
-            ExprKind::Unary(_, x) | ExprKind::Convert(x) => expr(x, f),
-            ExprKind::Check { value, .. } => expr(value, f),
-            ExprKind::Binary(_, x, y) => {
-                expr(x, f);
-                expr(y, f);
-            }
-            ExprKind::Intrinsic { args, .. } => args.iter().for_each(|a| expr(a, f)),
-            ExprKind::CallFn {
-                inputs,
-                inouts,
-                outputs,
-                ..
-            } => {
-                inputs.iter().for_each(|(_, e)| expr(e, f));
-                inouts.iter().for_each(|(_, p)| place(p, f));
-                outputs.iter().for_each(|o| place(&o.target, f));
-            }
-            ExprKind::Const(_) | ExprKind::CurTime => {}
-        }
-    }
-    fn place(p: &Place, f: &mut dyn FnMut(&Place)) {
-        f(p);
-        for pr in &p.proj {
-            if let Proj::Index(idx) = pr {
-                idx.iter().for_each(|(e, _, _)| expr(e, f));
-            }
-        }
-    }
-    for s in stmts {
-        match &s.kind {
-            StmtKind::Assign { place: p, value } => {
-                place(p, f);
-                expr(value, f);
-            }
-            StmtKind::CallFb {
-                instance,
-                inputs,
-                inouts,
-                outputs,
-                ..
-            } => {
-                place(instance, f);
-                inputs.iter().for_each(|(_, e)| expr(e, f));
-                inouts.iter().for_each(|(_, p)| place(p, f));
-                outputs.iter().for_each(|o| place(&o.target, f));
-            }
-            StmtKind::Eval(e) => expr(e, f),
-            StmtKind::If {
-                cond,
-                then_body,
-                else_body,
-            } => {
-                expr(cond, f);
-                visit_places(then_body, f);
-                visit_places(else_body, f);
-            }
-            StmtKind::Switch {
-                selector,
-                arms,
-                default,
-            } => {
-                expr(selector, f);
-                for a in arms {
-                    visit_places(&a.body, f);
-                }
-                visit_places(default, f);
-            }
-            StmtKind::Loop { body, latch } => {
-                visit_places(body, f);
-                visit_places(latch, f);
-            }
-            _ => {}
-        }
-    }
 }

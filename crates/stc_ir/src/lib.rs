@@ -32,6 +32,7 @@
 pub mod dump;
 pub mod layout;
 mod lower;
+pub mod visit;
 
 use stc_diagnostics::Span;
 use stc_sema::{GlobalId, PouId, TypeId, TypeTable, VarId};

@@ -392,7 +392,7 @@ impl<'a> Compiler<'a> {
                     found.push((a.clone(), v.ty));
                 }
             }
-            visit_places(&p.body, &mut |pl: &Place| {
+            stc_ir::visit::places(&p.body, &mut |pl: &Place| {
                 if let Root::Direct(a) = &pl.root {
                     found.push((a.clone(), addr_type(m, a)));
                 }
@@ -723,7 +723,7 @@ impl<'a> Compiler<'a> {
         let n = self.m.pous.len();
         let mut deps: Vec<Vec<usize>> = vec![Vec::new(); n];
         for (i, p) in self.m.pous.iter().enumerate() {
-            visit_calls(&p.body, &mut |c| deps[i].push(c.0 as usize));
+            stc_ir::visit::calls(&p.body, &mut |c| deps[i].push(c.0 as usize));
         }
         let mut order = Vec::with_capacity(n);
         let mut state = vec![0u8; n];
@@ -2440,184 +2440,6 @@ fn addr_type(m: &Module, a: &DirectAddress) -> TypeId {
         AddrSize::Lword => ElemType::Lword,
     };
     m.types_elem(e)
-}
-
-fn visit_places(stmts: &[Stmt], f: &mut dyn FnMut(&Place)) {
-    fn expr(e: &Expr, f: &mut dyn FnMut(&Place)) {
-        match &e.kind {
-            ExprKind::Load(p) => place(p, f),
-            ExprKind::Unary(_, x) | ExprKind::Convert(x) => expr(x, f),
-            ExprKind::Check { value, .. } => expr(value, f),
-            ExprKind::Binary(_, a, b) => {
-                expr(a, f);
-                expr(b, f);
-            }
-            ExprKind::CallFn {
-                inputs,
-                inouts,
-                outputs,
-                ..
-            } => {
-                for (_, x) in inputs {
-                    expr(x, f);
-                }
-                for (_, p) in inouts {
-                    place(p, f);
-                }
-                for o in outputs {
-                    place(&o.target, f);
-                }
-            }
-            ExprKind::Intrinsic { args, .. } => {
-                for a in args {
-                    expr(a, f);
-                }
-            }
-            _ => {}
-        }
-    }
-    fn place(p: &Place, f: &mut dyn FnMut(&Place)) {
-        f(p);
-        for pr in &p.proj {
-            if let Proj::Index(idx) = pr {
-                for (e, _, _) in idx {
-                    expr(e, f);
-                }
-            }
-        }
-    }
-    for s in stmts {
-        match &s.kind {
-            StmtKind::Assign { place: p, value } => {
-                place(p, f);
-                expr(value, f);
-            }
-            StmtKind::CallFb {
-                instance,
-                inputs,
-                inouts,
-                outputs,
-                ..
-            } => {
-                place(instance, f);
-                for (_, x) in inputs {
-                    expr(x, f);
-                }
-                for (_, p) in inouts {
-                    place(p, f);
-                }
-                for o in outputs {
-                    place(&o.target, f);
-                }
-            }
-            StmtKind::Eval(e) => expr(e, f),
-            StmtKind::If {
-                cond,
-                then_body,
-                else_body,
-            } => {
-                expr(cond, f);
-                visit_places(then_body, f);
-                visit_places(else_body, f);
-            }
-            StmtKind::Switch {
-                selector,
-                arms,
-                default,
-            } => {
-                expr(selector, f);
-                for a in arms {
-                    visit_places(&a.body, f);
-                }
-                visit_places(default, f);
-            }
-            StmtKind::Loop { body, latch } => {
-                visit_places(body, f);
-                visit_places(latch, f);
-            }
-            _ => {}
-        }
-    }
-}
-
-fn visit_calls(stmts: &[Stmt], f: &mut dyn FnMut(PouId)) {
-    fn expr(e: &Expr, f: &mut dyn FnMut(PouId)) {
-        match &e.kind {
-            ExprKind::CallFn { func, inputs, .. } => {
-                f(*func);
-                for (_, x) in inputs {
-                    expr(x, f);
-                }
-            }
-            ExprKind::Unary(_, x) | ExprKind::Convert(x) => expr(x, f),
-            ExprKind::Check { value, .. } => expr(value, f),
-            ExprKind::Binary(_, a, b) => {
-                expr(a, f);
-                expr(b, f);
-            }
-            ExprKind::Intrinsic { args, .. } => {
-                for a in args {
-                    expr(a, f);
-                }
-            }
-            ExprKind::Load(p) => {
-                for pr in &p.proj {
-                    if let Proj::Index(idx) = pr {
-                        for (e, _, _) in idx {
-                            expr(e, f);
-                        }
-                    }
-                }
-            }
-            _ => {}
-        }
-    }
-    for s in stmts {
-        match &s.kind {
-            StmtKind::Assign { value, place } => {
-                expr(value, f);
-                expr(
-                    &Expr {
-                        kind: ExprKind::Load(place.clone()),
-                        ty: place.ty,
-                    },
-                    f,
-                );
-            }
-            StmtKind::CallFb { fb, inputs, .. } => {
-                f(*fb);
-                for (_, x) in inputs {
-                    expr(x, f);
-                }
-            }
-            StmtKind::Eval(e) => expr(e, f),
-            StmtKind::If {
-                cond,
-                then_body,
-                else_body,
-            } => {
-                expr(cond, f);
-                visit_calls(then_body, f);
-                visit_calls(else_body, f);
-            }
-            StmtKind::Switch {
-                selector,
-                arms,
-                default,
-            } => {
-                expr(selector, f);
-                for a in arms {
-                    visit_calls(&a.body, f);
-                }
-                visit_calls(default, f);
-            }
-            StmtKind::Loop { body, latch } => {
-                visit_calls(body, f);
-                visit_calls(latch, f);
-            }
-            _ => {}
-        }
-    }
 }
 
 /// Whether an expression calls a function (which could change variables).

@@ -369,3 +369,79 @@ fn make_builds_both_harnesses() {
     assert!(text.contains(": 3 cycles,"), "{text}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The field side of located variables (seed 000 Fig. 3): `make rt
+/// IO=field_io.c` with a test's field I/O that writes raw bits into the
+/// input image arrays and prints the output arrays after each cycle. A
+/// field value outside a subrange or an enumeration is a fault at its
+/// address and the programs do not run on it.
+#[test]
+fn process_image_arrays_reach_the_field() {
+    let data = common::data_dir().join("c_image");
+    let dir = std::env::temp_dir().join(format!("stc-c-image-{}", std::process::id()));
+    let d = dir.display().to_string();
+    let out = stc::cli::run_args(&[
+        "stc",
+        "build",
+        &data.join("process_image.st").display().to_string(),
+        "--emit",
+        "c",
+        "-o",
+        &d,
+    ]);
+    assert_eq!(out.status, 0, "{}", out.stderr);
+    let header = std::fs::read_to_string(dir.join("program.h")).unwrap();
+    for decl in [
+        "extern uint8_t stc_img_I_X[2U][5U];",
+        "extern uint16_t stc_img_I_W[2U][3U];",
+        "extern uint64_t stc_img_I_L[2U][1U][3U];",
+        "extern uint8_t stc_img_Q_X[6U][3U];",
+        "extern uint32_t stc_img_Q_D[1U];",
+    ] {
+        assert!(header.contains(decl), "{decl} missing:\n{header}");
+    }
+    assert!(!header.contains("stc_img_M"), "memory has no field image");
+    misra(&dir).unwrap();
+    let made = Command::new("make")
+        .args(["-s", "-C", &d, "rt"])
+        .arg(format!("IO={}", data.join("field_io.c").display()))
+        .arg(format!("CFLAGS={}", CFLAGS.join(" ")))
+        .output()
+        .unwrap();
+    assert!(
+        made.status.success(),
+        "make rt: {}",
+        String::from_utf8_lossy(&made.stderr)
+    );
+    let rt = Command::new(dir.join("rt"))
+        .args(["--cycles", "4", "--quiet"])
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&rt.stdout);
+    let stderr = String::from_utf8_lossy(&rt.stderr);
+    let full = "X=0 B=ff W=fffa D=40400000 L1=400c000000000000 L2=3000000000";
+    let lines: Vec<&str> = stdout.lines().filter(|l| l.starts_with("out ")).collect();
+    assert_eq!(
+        lines,
+        [
+            format!("out {full}"),
+            // Cycles 2 and 3: USINT(0..100) got 200, Mode got 5: the
+            // programs do not run, the outputs stay.
+            format!("out {full}"),
+            format!("out {full}"),
+            format!("out {}", full.replace("B=ff", "B=b2")),
+        ],
+        "{stdout}{stderr}"
+    );
+    assert!(
+        stdout.contains("4 cycles, 0 overruns, 2 faults"),
+        "{stdout}"
+    );
+    assert!(
+        stderr.contains("fault: subrange violation in %IB3 at <process image>:0:0")
+            && stderr.contains("fault: subrange violation in %IW1.1 at <process image>:0:0"),
+        "{stderr}"
+    );
+    assert_eq!(rt.status.code(), Some(3), "{stderr}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -5,16 +5,17 @@
  * connects nothing: inputs keep their values, outputs go nowhere.
  */
 #include "stc_io.h"
-#include "stc_meta.h"
+#include "program.h"
 
 void stc_io_inputs(void)
 {
-    /* Example: for each k < stc_n_io whose address starts with "%I",
-       write the field value into *(type *)stc_io[k].data. */
+    /* Example, for a program with a located %IX1.4 and a digital input
+       card 1 at some memory address:
+           stc_img_I_X[1][4] = ((card1_register & 0x10U) != 0U) ? 1U : 0U; */
 }
 
 void stc_io_outputs(void)
 {
-    /* Example: for each k < stc_n_io whose address starts with "%Q",
-       read *(type *)stc_io[k].data and drive the field. */
+    /* Example, for a program with a located %QW2.5:
+           analog_out_card2[5] = stc_img_Q_W[2][5]; */
 }

@@ -177,4 +177,13 @@ extern const uint32_t stc_n_sites;
    (a fresh machine). */
 void stc_init_all(void);
 
+/* The field's process image (program.h declares its arrays, stc_img_I_X,
+   stc_img_Q_W, ...: seed 000's DV__I_X[card][channel]). stc_image_read
+   copies the %I arrays into the located input variables (an input out of
+   its subrange or enumeration is a fault, STC_FAULT_SUBRANGE, and is not
+   copied); stc_image_write copies the located output variables into the
+   %Q arrays. */
+void stc_image_read(void);
+void stc_image_write(void);
+
 #endif

@@ -73,6 +73,36 @@ extern uint64_t stc_steps;
 
 /* Two's complement reinterpretation of a bit pattern (portable: no
    implementation-defined conversion; gcc -O2 compiles each to nothing). */
+/* IEC 60559 bit patterns of REAL and LREAL (process image elements of
+   located REAL/LREAL variables; same memcpy reinterpretation). */
+static inline float stc_real_of_bits(uint32_t u)
+{
+    float r;
+    (void)memcpy((uint8_t *)&r, (const uint8_t *)&u, sizeof r);
+    return r;
+}
+
+static inline double stc_lreal_of_bits(uint64_t u)
+{
+    double r;
+    (void)memcpy((uint8_t *)&r, (const uint8_t *)&u, sizeof r);
+    return r;
+}
+
+static inline uint32_t stc_bits_of_real(float x)
+{
+    uint32_t r;
+    (void)memcpy((uint8_t *)&r, (const uint8_t *)&x, sizeof r);
+    return r;
+}
+
+static inline uint64_t stc_bits_of_lreal(double x)
+{
+    uint64_t r;
+    (void)memcpy((uint8_t *)&r, (const uint8_t *)&x, sizeof r);
+    return r;
+}
+
 static inline int8_t stc_i8_of(uint8_t u)
 {
     /* The same bits read as the signed type: exact-width integers are

@@ -94,6 +94,16 @@ static uint32_t stc_rt_copy(const void *src, uint32_t st, void *dst, uint32_t dt
     return fault;
 }
 
+/* Reports the pending fault at its site. */
+static void stc_rt_report_site(void)
+{
+    if (stc_fault_site < stc_n_sites) {
+        const stc_site *s = &stc_sites[stc_fault_site];
+        (void)fprintf(stderr, "fault: %s in %s at %s:%u:%u\n", stc_fault_text(stc_fault_kind),
+                      s->pou, s->file, (unsigned)s->line, (unsigned)s->col);
+    }
+}
+
 /* Runs one program instance; returns non-zero after a fault. */
 static int stc_rt_run_program(const stc_program *p)
 {
@@ -114,9 +124,7 @@ static int stc_rt_run_program(const stc_program *p)
     }
     if (fault != 0U) {
         if ((stc_fault_kind != 0U) && (stc_fault_site < stc_n_sites)) {
-            const stc_site *s = &stc_sites[stc_fault_site];
-            (void)fprintf(stderr, "fault: %s in %s at %s:%u:%u\n", stc_fault_text(stc_fault_kind),
-                          s->pou, s->file, (unsigned)s->line, (unsigned)s->col);
+            stc_rt_report_site();
         } else {
             (void)fprintf(stderr, "fault: %s in %s at <configuration>:0:0\n", stc_fault_text(fault),
                           p->name);
@@ -134,14 +142,24 @@ static void stc_rt_cycle(stc_rt_task *t, int64_t nominal)
     stc_port_lock();
     t0 = stc_port_now_ns();
     stc_io_inputs();
-    stc_clock = nominal;
-    stc_steps = stc_rt_max_steps;
-    for (k = 0U; k < t->n_programs; k++) {
-        if (stc_rt_run_program(t->programs[k]) != 0) {
-            t->faults++;
-            break;
+    stc_fault_kind = 0U;
+    stc_image_read();
+    if (stc_fault_kind != 0U) {
+        /* A field value outside its variable's type: the programs do not
+           run on it this cycle. */
+        stc_rt_report_site();
+        t->faults++;
+    } else {
+        stc_clock = nominal;
+        stc_steps = stc_rt_max_steps;
+        for (k = 0U; k < t->n_programs; k++) {
+            if (stc_rt_run_program(t->programs[k]) != 0) {
+                t->faults++;
+                break;
+            }
         }
     }
+    stc_image_write();
     stc_io_outputs();
     dt = stc_port_now_ns() - t0;
     if (dt > t->max_exec_ns) {
@@ -174,6 +192,10 @@ static void stc_rt_periodic(void *arg)
             /* An event task: runs on a rising edge of its SINGLE. */
             uint8_t v;
             stc_port_lock();
+            /* The SINGLE may be a located input: sample the field. */
+            stc_io_inputs();
+            stc_image_read();
+            stc_fault_kind = 0U;
             v = stc_rt_single(t->task);
             stc_port_unlock();
             run = 0;

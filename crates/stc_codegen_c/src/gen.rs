@@ -92,6 +92,8 @@ struct Gen<'a> {
     /// The type of each process-image slot: of the first variable located
     /// there, else of its address.
     io_types: FxHashMap<DirectAddress, TypeId>,
+    /// The declarations of the process image arrays (program.h).
+    image_header: String,
 }
 
 /// Generates the program of a module.
@@ -127,6 +129,7 @@ pub fn program(m: &Module, locate: Locate<'_>) -> Result<Program, Error> {
         contexts,
         used: used_pous(m),
         io_types: io_types(m),
+        image_header: String::new(),
     };
     g.run()
 }
@@ -188,6 +191,8 @@ impl<'a> Gen<'a> {
         header.push_str(&self.forward);
         header.push('\n');
         header.push_str(&self.typedefs);
+        header.push_str("\n/* ---- process image (stc_io.h) ---- */\n");
+        header.push_str(&self.image_header);
         header.push_str("\n#endif\n");
         let mut source = String::new();
         source.push_str(
@@ -1704,7 +1709,7 @@ impl<'a> Gen<'a> {
                     let ty = self.meta_type(MetaKey::Pou(*p));
                     progs.push(format!(
                         "{{ {}, {ty}U, &{var}, W{p}, {}, {ins}, {n_in}U, {outs}, {n_out}U }}",
-                        c_str(m.name(inst.name)),
+                        c_str(m.spelled(inst.name, inst.name_span)),
                         inst.task.map_or(-1, |x| x as i64)
                     ));
                 }
@@ -1815,6 +1820,14 @@ impl<'a> Gen<'a> {
         }
         // Types last: everything above may have added to them.
         let types_out = std::mem::take(&mut self.meta_types);
+        // The field's process image arrays (image.rs).
+        let slots: Vec<(DirectAddress, TypeId)> =
+            io.iter().map(|a| (a.clone(), self.io_type(a))).collect();
+        let sites = &mut self.sites;
+        let img = crate::image::generate(m, &slots, &mut |a: &DirectAddress| {
+            sites.push((a.to_string(), "<process image>".into(), 0, 0));
+            (sites.len() - 1) as u32
+        })?;
         let sites: Vec<String> = self
             .sites
             .iter()
@@ -1863,6 +1876,9 @@ impl<'a> Gen<'a> {
             out.push('\n');
         }
         out.push_str("}\n");
+        out.push_str("\n/* ---- process image ---- */\n");
+        out.push_str(&img.source);
+        self.image_header = img.header;
         Ok(out)
     }
 

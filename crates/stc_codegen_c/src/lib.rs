@@ -34,6 +34,7 @@
 pub mod ops;
 
 mod gen;
+mod image;
 pub mod names;
 
 use stc_ir::Module;
@@ -105,7 +106,7 @@ sim: $(SIM_SRC) $(HEADERS)
 \t$(CC) $(CFLAGS) -DSTC_WATCHDOG -o sim $(SIM_SRC) -lm
 
 rt: $(RT_SRC) $(HEADERS) stc_port.h stc_io.h
-\t$(CC) $(CFLAGS) -DSTC_WATCHDOG -pthread -o rt $(RT_SRC) -lm
+\t$(CC) $(CFLAGS) -I. -DSTC_WATCHDOG -pthread -o rt $(RT_SRC) -lm
 
 clean:
 \trm -f sim rt

@@ -22,46 +22,46 @@ pub fn lower(ast: &Ast, analysis: Analysis, interner: &Interner, sources: &Sourc
         .collect();
     // Outputs show a name as spelled at its declaration.
     let mut spellings = rustc_hash::FxHashMap::default();
-    let mut declare = |sym: stc_syntax::Symbol, span: Span| {
+    let mut declare = |sym: stc_syntax::Symbol, span: Span, rename: bool| {
         let s = sources.slice(span);
         if !s.is_empty() && s.eq_ignore_ascii_case(interner.key(sym)) {
-            if let Some(slot) = names.get_mut(sym.0 as usize) {
+            if let Some(slot) = names.get_mut(sym.0 as usize).filter(|_| rename) {
                 *slot = s.to_string();
             }
             spellings.insert(span.lo, Box::<str>::from(s));
         }
     };
     for p in &analysis.pous {
-        declare(p.name, p.name_span);
+        declare(p.name, p.name_span, true);
         for v in &p.vars {
-            declare(v.name, v.span);
+            declare(v.name, v.span, true);
         }
     }
     for g in &analysis.globals {
-        declare(g.var.name, g.var.span);
+        declare(g.var.name, g.var.span, true);
     }
     for c in &analysis.configs {
         for r in &c.resources {
             for i in &r.programs {
-                if let Some(s) = sources.slice(i.span).split_whitespace().nth(1) {
-                    let _ = s;
-                }
+                // Only the spelling at the instance: the symbol's name
+                // stays its POU's or variable's (`main WITH t : Main`).
+                declare(i.name, i.name_span, false);
             }
         }
     }
     for t in 0..analysis.types.len() {
         let info = analysis.types.get(TypeId(t as u32));
         if let (Some(n), Some(span)) = (info.name, info.name_span) {
-            declare(n, span);
+            declare(n, span, true);
         }
         if let TypeKind::Enum { values, .. } = &info.kind {
             for v in values {
-                declare(v.name, v.span);
+                declare(v.name, v.span, true);
             }
         }
         if let TypeKind::Struct { fields } = &info.kind {
             for f in fields {
-                declare(f.name, f.span);
+                declare(f.name, f.span, true);
             }
         }
     }

@@ -249,6 +249,7 @@ impl<'a> Sema<'a> {
             let mut def = ProgramInstDef {
                 name: inst.name.sym,
                 span: inst.span,
+                name_span: inst.name.span,
                 pou,
                 task,
                 inputs: Vec::new(),

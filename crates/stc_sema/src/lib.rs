@@ -179,6 +179,8 @@ pub enum DataRef {
 pub struct ProgramInstDef {
     pub name: Symbol,
     pub span: Span,
+    /// Where the instance name is written (its spelling).
+    pub name_span: Span,
     pub pou: PouId,
     /// Index into the resource's tasks.
     pub task: Option<usize>,

@@ -238,7 +238,7 @@ impl<'a> Compiler<'a> {
                 let mut programs = Vec::new();
                 for inst in &r.programs {
                     programs.push(self.program_instance(
-                        self.m.name(inst.name).to_string(),
+                        self.m.spelled(inst.name, inst.name_span).to_string(),
                         inst.pou,
                         inst.task.map(|t| t as u32),
                         Some((ci, ri)),

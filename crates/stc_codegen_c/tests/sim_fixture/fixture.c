@@ -329,7 +329,7 @@ static const stc_conn p2_outputs[1] = { { offsetof(P_Aux, n), T_INT, &g_top, T_I
 static const stc_conn p3_inputs[1] = { { offsetof(P_Aux, inp), T_INT, &g_g_sint, T_SINT } };
 
 static const stc_program plant_programs[4] = {
-    { "Main", T_MAIN, &i_main, main_body, 0, NULL, 0U, NULL, 0U },
+    { "main", T_MAIN, &i_main, main_body, 0, NULL, 0U, NULL, 0U },
     { "p2", T_AUX, &i_p2, aux_body, 2, p2_inputs, 1U, p2_outputs, 1U },
     { "p3", T_AUX, &i_p3, aux_body, 1, p3_inputs, 1U, NULL, 0U },
     { "p4", T_AUX, &i_p4, aux_body, -1, NULL, 0U, NULL, 0U }

@@ -853,6 +853,17 @@ impl<'a> Gen<'a> {
                         ));
                     }
                     let counts: Vec<i128> = dims.iter().map(|(l, h)| h - l + 1).collect();
+                    // Indices no check can fail (constants; FOR control
+                    // variables whose bounds are inside the array's) are
+                    // signed offsets when every index of the access is such:
+                    // gcc then walks the array with a pointer, as it does
+                    // for hand-written C (an unsigned conversion hides the
+                    // induction).
+                    let unchecked = |g: &Self, e: &stc_ir::Expr, lo: i128, hi: i128| {
+                        matches!(e.kind, ExprKind::Const(Value::Int(_)))
+                            || g.range_of(e).is_some_and(|(l, h)| lo <= l && h <= hi)
+                    };
+                    let signed = idx.iter().all(|(e, lo, hi)| unchecked(self, e, *lo, *hi));
                     let mut flat = Vec::new();
                     let mut checks = Vec::new();
                     for (k, (e, lo, hi)) in idx.iter().enumerate() {
@@ -860,16 +871,28 @@ impl<'a> Gen<'a> {
                         if let ExprKind::Const(Value::Int(i)) = &e.kind {
                             // Checked by the analyser.
                             let pos = (i - lo) * mult;
-                            flat.push(format!("{}U", pos.max(0)));
+                            flat.push(if signed {
+                                format!("INT64_C({})", pos.max(0))
+                            } else {
+                                format!("{}U", pos.max(0))
+                            });
                             continue;
                         }
                         let known = self.range_of(e).filter(|&(l, h)| *lo <= l && h <= *hi);
                         let i = self.expr(e)?;
+                        if known.is_some() && signed {
+                            let k_t = self.new_temp("int64_t".into());
+                            checks.push(format!("{k_t} = (int64_t){i} - INT64_C({lo});"));
+                            flat.push(if mult == 1 {
+                                k_t
+                            } else {
+                                format!("({k_t} * INT64_C({mult}))")
+                            });
+                            continue;
+                        }
                         let k_t = self.new_temp("uint32_t".into());
                         let site = self.f.site;
                         if known.is_some() {
-                            // A FOR control variable whose bounds are inside
-                            // the array's: no check can fail.
                             checks
                                 .push(format!("{k_t} = (uint32_t)((int64_t){i} - INT64_C({lo}));"));
                             flat.push(if mult == 1 {

@@ -465,6 +465,12 @@ impl Parser<'_> {
                 let name = self.intern_token(t);
                 self.mk(ExprKind::Name(name), t.span(), 0)
             }
+            // A reserved word this file declared as a name (its E0022).
+            k if self.reserved_names.contains(&k) => {
+                self.bump();
+                let name = self.intern_token(t);
+                self.mk(ExprKind::Name(name), t.span(), 0)
+            }
             _ => {
                 self.expected("an expression");
                 self.error_expr(t.span())

@@ -74,6 +74,7 @@ pub fn parse_file(text: &str, base: u32, ast: &mut Ast, interner: &mut Interner)
         superseded: Vec::new(),
         pou_partial: false,
         pou_skipped: Vec::new(),
+        reserved_names: Vec::new(),
         unit: UnitPart::Outside,
     };
     p.file();
@@ -196,6 +197,10 @@ pub(crate) struct Parser<'a> {
     pou_partial: bool,
     /// Members of the POU being parsed that were skipped.
     pou_skipped: Vec<Ident>,
+    /// Reserved words declared as names (after their E0022): their uses
+    /// (`struct(x := 1);`, `a := struct.q;`) are read as names, so the one
+    /// mistake gets one diagnostic, not one more per use.
+    reserved_names: Vec<TokenKind>,
     unit: UnitPart,
 }
 
@@ -477,6 +482,9 @@ impl<'a> Parser<'a> {
                 )
                 .with_label("reserved word");
                 self.report(d);
+                if !self.reserved_names.contains(&k) {
+                    self.reserved_names.push(k);
+                }
                 self.bump();
                 Some(self.intern_token(t))
             }

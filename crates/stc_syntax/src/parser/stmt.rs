@@ -169,7 +169,7 @@ impl Parser<'_> {
 
     fn expr_statement(&mut self) -> Option<Stmt> {
         let start = self.tok();
-        if !Self::can_start_expr(start.kind) {
+        if !Self::can_start_expr(start.kind) && !self.reserved_names.contains(&start.kind) {
             self.expected("a statement");
             self.bump();
             self.skip_stmt();

@@ -27,8 +27,9 @@ void stc_io_inputs(void)
 
 void stc_io_outputs(void)
 {
-    (void)printf("out X=%u B=%02x W=%04x D=%08lx L1=%016llx L2=%llu\n",
+    (void)printf("out X=%u B=%02x W=%04x K=%04x D=%08lx L1=%016llx L2=%llu\n",
                  (unsigned)stc_img_Q_X[5][2], (unsigned)stc_img_Q_B[7],
-                 (unsigned)stc_img_Q_W[2][5], (unsigned long)stc_img_Q_D[0],
+                 (unsigned)stc_img_Q_W[2][5], (unsigned)stc_img_Q_W[0][9],
+                 (unsigned long)stc_img_Q_D[0],
                  (unsigned long long)stc_img_Q_L[1], (unsigned long long)stc_img_Q_L[2]);
 }

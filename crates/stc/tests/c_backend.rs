@@ -393,7 +393,7 @@ fn process_image_arrays_reach_the_field() {
     let header = std::fs::read_to_string(dir.join("program.h")).unwrap();
     for decl in [
         "extern uint8_t stc_img_I_X[2U][5U];",
-        "extern uint16_t stc_img_I_W[2U][3U];",
+        "extern uint16_t stc_img_I_W[2U][10U];",
         "extern uint64_t stc_img_I_L[2U][1U][3U];",
         "extern uint8_t stc_img_Q_X[6U][3U];",
         "extern uint32_t stc_img_Q_D[1U];",
@@ -419,7 +419,7 @@ fn process_image_arrays_reach_the_field() {
         .unwrap();
     let stdout = String::from_utf8_lossy(&rt.stdout);
     let stderr = String::from_utf8_lossy(&rt.stderr);
-    let full = "X=0 B=ff W=fffa D=40400000 L1=400c000000000000 L2=3000000000";
+    let full = "X=0 B=ff W=fffa K=fff9 D=40400000 L1=400c000000000000 L2=3000000000";
     let lines: Vec<&str> = stdout.lines().filter(|l| l.starts_with("out ")).collect();
     assert_eq!(
         lines,

@@ -2,7 +2,8 @@
  * stc_io.c - field I/O for the real-time harness: fill in these two
  * functions for your hardware (keep your copy outside the generated
  * directory and build with `make rt IO=path/to/your_io.c`). This default
- * connects nothing: inputs keep their values, outputs go nowhere.
+ * connects nothing: inputs keep their initial values (stc_init_all writes
+ * them into the input arrays), outputs go nowhere.
  */
 #include "stc_io.h"
 #include "program.h"

@@ -1660,7 +1660,15 @@ impl<'a> Gen<'a> {
             init.push(format!("(void)memset(&{var}, 0, sizeof {var});"));
         }
         let body_start = self.f.body.len();
+        // Located variables' initial values, once per slot (stc_ir).
+        for (a, t, init) in m.located_inits() {
+            let n = self.io_access(&a, t)?;
+            self.init_value(&n, t, init, Some("0U"), 0)?;
+        }
         for (gi, g) in m.globals.iter().enumerate() {
+            if g.location.as_ref().is_some_and(|a| !a.is_incomplete()) {
+                continue;
+            }
             let n = global_lvalue(m, gi);
             self.init_value(&n, g.ty, g.init.as_ref(), Some("0U"), 0)?;
         }
@@ -1895,6 +1903,10 @@ impl<'a> Gen<'a> {
             let _ = writeln!(out, "    {l}");
         }
         for l in &inits {
+            out.push_str(l);
+            out.push('\n');
+        }
+        for l in &img.init {
             out.push_str(l);
             out.push('\n');
         }

@@ -19,7 +19,9 @@
 //! every `%I` element into its variable (same bits: two's complement for
 //! signed types, IEC 60559 for REAL/LREAL; a BOOL is TRUE for any non-zero
 //! bit element) and `stc_image_write()` every `%Q` variable into its
-//! element, around each task cycle in the real-time harness. An input whose
+//! element, around each task cycle in the real-time harness; `stc_init_all`
+//! sets each input element to its variable's initial value, so with no
+//! field connected an input keeps that value. An input whose
 //! variable is a subrange or an enumeration and whose field value is not
 //! one of its values is not copied (the variable keeps its value) and is a
 //! subrange fault at the address, so no program ever sees a value outside
@@ -45,6 +47,10 @@ const MAX_ELEMENTS: u64 = 1 << 20;
 pub(crate) struct Image {
     pub header: String,
     pub source: String,
+    /// Statements for the end of `stc_init_all`: every input element set to
+    /// its variable's initial value, so that with no field connected an
+    /// input keeps its declared initial value.
+    pub init: Vec<String>,
 }
 
 /// A process-image slot: its address and the type of its C variable.
@@ -77,6 +83,8 @@ pub(crate) fn generate(
     let mut source = String::new();
     let mut read = Vec::new();
     let mut write = Vec::new();
+    let mut init = Vec::new();
+    let mut clear = Vec::new();
     for (area, size, slots) in &groups {
         let name = array_name(*area, *size);
         let rank = slots.iter().map(|s| s.0.path.len()).max().unwrap_or(1);
@@ -102,6 +110,7 @@ pub(crate) fn generate(
         let shape: String = dims.iter().map(|d| format!("[{d}U]")).collect();
         let _ = writeln!(header, "extern {elem} {name}{shape};");
         let _ = writeln!(source, "{elem} {name}{shape};");
+        clear.push(format!("    (void)memset({name}, 0, sizeof {name});"));
         for (a, ty) in slots.iter().map(|s| (&s.0, s.1)) {
             let el = format!(
                 "{name}{}",
@@ -118,6 +127,7 @@ pub(crate) fn generate(
             };
             if *area == AddrArea::Input {
                 read.push(read_one(m, a, ty, e, &el, &var, site)?);
+                init.push(format!("    {el} = {};", bits_of(e, &var)));
             } else {
                 write.push(format!("    {el} = {};", bits_of(e, &var)));
             }
@@ -130,7 +140,13 @@ pub(crate) fn generate(
         }
         source.push_str("}\n");
     }
-    Ok(Image { header, source })
+    clear.append(&mut init);
+    let init = clear;
+    Ok(Image {
+        header,
+        source,
+        init,
+    })
 }
 
 /// `stc_img_I_X`, `stc_img_Q_W`, ...

@@ -58,6 +58,37 @@ pub struct Module {
 }
 
 impl Module {
+    /// The initial value of every process-image slot that a located
+    /// variable declares: the last explicit initial value among the
+    /// declarations at that address (globals in order, then the variables
+    /// of each POU in order), else the type default of the first
+    /// declaration (`None`). Both back ends write it once, at start, so a
+    /// located variable's initial value does not depend on which instance
+    /// is initialised first.
+    pub fn located_inits(&self) -> Vec<(DirectAddress, TypeId, Option<&stc_sema::InitValue>)> {
+        let mut out: Vec<(DirectAddress, TypeId, Option<&stc_sema::InitValue>)> = Vec::new();
+        let decls = self
+            .globals
+            .iter()
+            .map(|g| (&g.location, g.ty, g.init.as_ref()))
+            .chain(
+                self.pous
+                    .iter()
+                    .flat_map(|p| p.vars.iter().map(|v| (&v.location, v.ty, v.init.as_ref()))),
+            );
+        for (loc, ty, init) in decls {
+            let Some(a) = loc.as_ref().filter(|a| !a.is_incomplete()) else {
+                continue;
+            };
+            match out.iter_mut().find(|(b, _, _)| b == a) {
+                Some(slot) if init.is_some() => *slot = (a.clone(), ty, init),
+                Some(_) => {}
+                None => out.push((a.clone(), ty, init)),
+            }
+        }
+        out
+    }
+
     /// The type of an elementary type name (not STRING/WSTRING).
     pub fn types_elem(&self, e: stc_syntax::token::ElemType) -> TypeId {
         let i = stc_syntax::token::ElemType::ALL

@@ -158,6 +158,7 @@ pub fn program(seed: u64, size: Size) -> Generated {
         funcs: Vec::new(),
         index_nesting: 0,
         event_global: None,
+        next_address: 0,
     };
     g.build(seed)
 }
@@ -212,6 +213,9 @@ pub(crate) struct Gen {
     /// The global BOOL that triggers the event task, while Main is
     /// generated.
     event_global: Option<String>,
+    /// The next free number of a direct address: every located variable
+    /// gets its own address, so no two declarations share a slot.
+    next_address: u32,
 }
 
 const WORDS: &[&str] = &[
@@ -248,6 +252,7 @@ impl Gen {
                     ty: Ty::E(e),
                     sect: Sect::External,
                     init,
+                    location: None,
                 });
             }
         }
@@ -260,6 +265,7 @@ impl Gen {
                 ty: Ty::E(E::Bool),
                 sect: Sect::External,
                 init: None,
+                location: None,
             });
             self.event_global = Some("g_event".into());
         }
@@ -790,8 +796,32 @@ impl Gen {
         }
     }
 
+    /// A fresh direct address for a variable of type `e`: its size letter
+    /// (X, B, W, D, L) fixed by the type, the area chosen at random.
+    fn address_for(&mut self, e: E) -> Option<String> {
+        let size = match e {
+            E::Bool => 'X',
+            E::Sint | E::Usint | E::Byte | E::Char => 'B',
+            E::Int | E::Uint | E::Word | E::Wchar => 'W',
+            E::Dint | E::Udint | E::Dword | E::Real => 'D',
+            E::String | E::Wstring => return None,
+            _ => 'L',
+        };
+        let area = ['I', 'Q', 'M'][self.rng.index(3)];
+        let n = self.next_address;
+        self.next_address += 1;
+        Some(if size == 'X' {
+            format!("%{area}X{}.{}", n / 8, n % 8)
+        } else {
+            format!("%{area}{size}{n}")
+        })
+    }
+
     fn decl(&self, v: &Var) -> String {
-        let mut s = format!("{} : {}", v.name, self.types.text(&v.ty));
+        let mut s = match &v.location {
+            Some(a) => format!("{} AT {a} : {}", v.name, self.types.text(&v.ty)),
+            None => format!("{} : {}", v.name, self.types.text(&v.ty)),
+        };
         if let Some(i) = &v.init {
             s.push_str(&format!(" := {i}"));
         }
@@ -839,6 +869,7 @@ impl Gen {
             ty,
             sect,
             init,
+            location: None,
         }
     }
 
@@ -991,6 +1022,7 @@ impl Gen {
                 ty: Ty::E(E::Dint),
                 sect: Sect::Constant,
                 init: Some(v.to_string()),
+                location: None,
             });
             k += 1;
         }
@@ -1015,6 +1047,15 @@ impl Gen {
             let t = self.program_var_ty(fb_limit, &consts, true);
             vars.push(self.new_var("v", t, Sect::Local, k));
             k += 1;
+        }
+        // Some elementary locals live in the process image (%I, %Q, %M),
+        // with or without an initial value.
+        for v in vars.iter_mut() {
+            if v.sect == Sect::Local && self.rng.chance(20) {
+                if let Ty::E(e) = v.ty {
+                    v.location = self.address_for(e);
+                }
+            }
         }
         for g in globals {
             vars.push(Var {
@@ -1139,6 +1180,7 @@ impl Gen {
                     ty: Ty::E(E::Int),
                     sect: Sect::Local,
                     init: None,
+                    location: None,
                 });
                 let n = self.rng.range(1, 6);
                 let c = self.cond(b, d.min(2));
@@ -1431,6 +1473,7 @@ impl Gen {
             ty: Ty::E(t),
             sect: Sect::Local,
             init: None,
+            location: None,
         });
         let window = |g: &mut Gen| g.rng.range(lo_t.max(-10), hi_t.min(20));
         // Arrays whose index range the loop can walk.

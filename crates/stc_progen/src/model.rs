@@ -379,6 +379,8 @@ pub struct Var {
     pub sect: Sect,
     /// The initial value as written, if any.
     pub init: Option<String>,
+    /// The direct address it is located at (`%QW7`), if any.
+    pub location: Option<String>,
 }
 
 /// One step of a path from a variable to a value.

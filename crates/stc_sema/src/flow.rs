@@ -65,13 +65,13 @@ impl<'a> Sema<'a> {
         // A part reported as not supported (an IL or SFC body, a METHOD...)
         // may use any variable and assign the result: nothing is known.
         let partial = pou.partial;
-        let vars: Vec<(stc_syntax::Symbol, Span, Section)> = self.pous[p.0 as usize]
+        let vars: Vec<(stc_syntax::Symbol, Span, Section, bool)> = self.pous[p.0 as usize]
             .vars
             .iter()
             .filter(|v| !v.implicit)
-            .map(|v| (v.name, v.span, v.section))
+            .map(|v| (v.name, v.span, v.section, v.location.is_some()))
             .collect();
-        for (i, &(name, span, section)) in vars.iter().enumerate() {
+        for (i, &(name, span, section, located)) in vars.iter().enumerate() {
             let v = Local {
                 name,
                 span,
@@ -79,7 +79,10 @@ impl<'a> Sema<'a> {
             };
             let id = VarId(i as u32);
             let shown = self.spelled(v.name, v.span);
+            // A located variable is part of the I/O map (its initial value
+            // is the slot's): declaring it is a use.
             if matches!(v.section, Section::Var | Section::Temp)
+                && !located
                 && !self.used.contains(&(p, id))
                 && !partial
             {

@@ -185,6 +185,12 @@ impl<'a> Compiler<'a> {
         }
         // Data: process image, globals, program instances.
         self.collect_io();
+        // Located variables' initial values, once per slot (stc_ir).
+        let m = self.m;
+        for (a, t, init) in m.located_inits() {
+            let off = self.io_slot(&a, t);
+            self.write_init(t, off, init, None);
+        }
         let mut globals = Vec::new();
         for (gi, g) in self.m.globals.iter().enumerate() {
             let lay = self.l.of(g.ty);

@@ -94,6 +94,8 @@ struct Gen<'a> {
     io_types: FxHashMap<DirectAddress, TypeId>,
     /// The declarations of the process image arrays (program.h).
     image_header: String,
+    /// The private variables of unbound VAR_EXTERNALs (`private_external`).
+    private_cells: FxHashSet<String>,
 }
 
 /// Generates the program of a module.
@@ -130,6 +132,7 @@ pub fn program(m: &Module, locate: Locate<'_>) -> Result<Program, Error> {
         used: used_pous(m),
         io_types: io_types(m),
         image_header: String::new(),
+        private_cells: FxHashSet::default(),
     };
     g.run()
 }
@@ -370,6 +373,20 @@ impl<'a> Gen<'a> {
                 "variables of different types ({sc} and {wc}) at the address {a}"
             )))
         }
+    }
+
+    /// The variable a VAR_EXTERNAL gets when no global of its name and
+    /// type exists where it runs (a program run on its own whose globals
+    /// are in a configuration): a static of its own, set to the type's
+    /// default by the POU's init function, as the VM gives it.
+    fn private_external(&mut self, p: usize, v: usize, t: TypeId) -> Result<String, Error> {
+        let cell = format!("ext_{p}_{v}");
+        self.define(t);
+        if self.private_cells.insert(cell.clone()) {
+            let _ = writeln!(self.data, "static {} {cell};", names::type_name(self.m, t));
+        }
+        self.init_value(&cell, t, None, Some("0U"), 0)?;
+        Ok(cell)
     }
 
     // ----- sites ------------------------------------------------------------
@@ -1480,7 +1497,11 @@ impl<'a> Gen<'a> {
                 } else if v.section == Section::External {
                     let mut first = true;
                     for (k, &(c, r)) in self.contexts.clone().iter().enumerate() {
-                        if let Some(g) = bind_global(m, v.name, Some((c, r))) {
+                        // (A context whose global has another type does not run this
+                        // POU: sema checks where it runs.)
+                        if let Some(g) = bind_global(m, v.name, v.ty, Some((c, r)))
+                            .filter(|&g| m.same_type(m.globals[g].ty, v.ty))
+                        {
                             let kw = if first { "if" } else { "} else if" };
                             if !first {
                                 self.f.depth = self.f.depth.saturating_sub(1);
@@ -1490,12 +1511,15 @@ impl<'a> Gen<'a> {
                             first = false;
                         }
                     }
-                    let top = bind_global(m, v.name, None);
+                    let top = bind_global(m, v.name, v.ty, None);
                     match (first, top) {
                         (true, Some(g)) => {
                             self.line(format!("self->{name} = &{};", global_lvalue(m, g)))
                         }
-                        (true, None) => self.line(format!("self->{name} = NULL;")),
+                        (true, None) => {
+                            let cell = self.private_external(p, i, v.ty)?;
+                            self.line(format!("self->{name} = &{cell};"));
+                        }
                         (false, Some(g)) => {
                             self.f.depth = self.f.depth.saturating_sub(1);
                             self.open("} else {".into());
@@ -1505,7 +1529,8 @@ impl<'a> Gen<'a> {
                         (false, None) => {
                             self.f.depth = self.f.depth.saturating_sub(1);
                             self.open("} else {".into());
-                            self.line(format!("self->{name} = NULL;"));
+                            let cell = self.private_external(p, i, v.ty)?;
+                            self.line(format!("self->{name} = &{cell};"));
                             self.close("}");
                         }
                     }
@@ -2391,7 +2416,12 @@ fn addr_type(m: &Module, a: &DirectAddress) -> TypeId {
 }
 
 /// The global a VAR_EXTERNAL named `name` refers to (as the VM binds it).
-fn bind_global(m: &Module, name: stc_syntax::Symbol, ctx: Option<(usize, usize)>) -> Option<usize> {
+fn bind_global(
+    m: &Module,
+    name: stc_syntax::Symbol,
+    ty: TypeId,
+    ctx: Option<(usize, usize)>,
+) -> Option<usize> {
     let named = |g: &stc_sema::GlobalId| m.globals[g.0 as usize].name == name;
     if let Some((c, r)) = ctx {
         let conf = &m.configs[c];
@@ -2415,8 +2445,11 @@ fn bind_global(m: &Module, name: stc_syntax::Symbol, ctx: Option<(usize, usize)>
                     .any(|r| r.globals.iter().any(|g| g.0 as usize == gi))
         })
     };
-    let top = (0..m.globals.len()).find(|&i| m.globals[i].name == name && !in_config(i));
-    let any = (0..m.globals.len()).find(|&i| m.globals[i].name == name);
+    // (Outside the configurations that sema checked: only a global of the
+    // external's type.)
+    let fits = |i: usize| m.globals[i].name == name && m.same_type(m.globals[i].ty, ty);
+    let top = (0..m.globals.len()).find(|&i| fits(i) && !in_config(i));
+    let any = (0..m.globals.len()).find(|&i| fits(i));
     top.or(any)
 }
 

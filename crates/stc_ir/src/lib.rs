@@ -58,6 +58,14 @@ pub struct Module {
 }
 
 impl Module {
+    /// Whether two types are the same type (assignable both ways without
+    /// conversion), as a VAR_EXTERNAL and its VAR_GLOBAL must be.
+    pub fn same_type(&self, a: TypeId, b: TypeId) -> bool {
+        use stc_sema::Compat;
+        self.types.compat(a, b, false) == Compat::Same
+            && self.types.compat(b, a, false) == Compat::Same
+    }
+
     /// The initial value of every process-image slot that a located
     /// variable declares: the last explicit initial value among the
     /// declarations at that address (globals in order, then the variables

@@ -99,18 +99,22 @@ impl<'a> Sema<'a> {
                 let ty = self.check_expr(e, Some(bool_ty), scope);
                 let span = self.ast.expr(e).span;
                 let r = self.data_ref(e);
+                // A global, a direct variable or a constant (the
+                // standard's data_source; a constant TRUE gives the task
+                // one rising edge, at start).
+                if ty != TypeId::ERROR && !self.types.is_bool(ty) {
+                    let msg = format!("SINGLE needs a BOOL, not {}", self.tname(ty));
+                    self.emit(Diagnostic::new(Code::E0804, span, msg));
+                    return None;
+                }
                 if ty != TypeId::ERROR
-                    && (!self.types.is_bool(ty)
-                        || !matches!(r, Some(DataRef::Global(_) | DataRef::Direct(_))))
+                    && !matches!(
+                        r,
+                        Some(DataRef::Global(_) | DataRef::Direct(_) | DataRef::Const(_))
+                    )
                 {
-                    let msg = format!(
-                        "SINGLE needs a BOOL variable, not {}",
-                        if matches!(r, Some(DataRef::Const(_))) {
-                            "a constant".to_string()
-                        } else {
-                            self.tname(ty)
-                        }
-                    );
+                    let msg = "SINGLE needs a global BOOL variable, a direct address or a constant"
+                        .to_string();
                     self.emit(Diagnostic::new(Code::E0804, span, msg));
                     return None;
                 }

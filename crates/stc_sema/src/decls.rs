@@ -32,6 +32,25 @@ impl<'a> Sema<'a> {
     fn register(&mut self, name: Ident, what: GlobalName) -> bool {
         if let Some(prev) = self.names.get(&name.sym).copied() {
             let prev_span = self.global_name_span(prev);
+            if let Some(user) = prev_span.filter(|_| self.in_prelude(name.span)) {
+                // The user's declaration came first; the standard one is
+                // not the user's to see: report the user's.
+                let shown = self.spelled(name.sym, user);
+                let kind = match what {
+                    GlobalName::Pou(_) => "function block",
+                    _ => "name",
+                };
+                self.emit(
+                    Diagnostic::new(
+                        Code::E0105,
+                        user,
+                        format!("`{shown}` is a standard {kind} and cannot be declared again"),
+                    )
+                    .with_label(format!("the standard {kind} `{shown}` is already declared"))
+                    .with_help("give this declaration another name"),
+                );
+                return false;
+            }
             let shown = self.spelled(name.sym, name.span);
             let mut d = Diagnostic::new(
                 Code::E0105,

@@ -97,20 +97,18 @@ impl<'a> Sema<'a> {
             ) {
                 continue;
             }
-            let hidden = if self.global_names.contains(&v.name) {
-                Some("a global variable")
-            } else {
-                match self.names.get(&v.name).copied() {
-                    Some(GlobalName::Type(_)) => Some("a data type"),
-                    Some(GlobalName::Pou(q)) if !self.pous[q.0 as usize].is_std => {
-                        Some(match self.pous[q.0 as usize].kind {
-                            PouKind::Function => "a function",
-                            PouKind::FunctionBlock => "a function block type",
-                            PouKind::Program => "a program",
-                        })
-                    }
-                    _ => None,
+            // (Hiding a global is checked with the externals, once it is
+            // known where the POU runs: `check_hidden_globals`.)
+            let hidden = match self.names.get(&v.name).copied() {
+                Some(GlobalName::Type(_)) => Some("a data type"),
+                Some(GlobalName::Pou(q)) if !self.pous[q.0 as usize].is_std => {
+                    Some(match self.pous[q.0 as usize].kind {
+                        PouKind::Function => "a function",
+                        PouKind::FunctionBlock => "a function block type",
+                        PouKind::Program => "a program",
+                    })
                 }
+                _ => None,
             };
             if let Some(what) = hidden {
                 self.emit(
@@ -386,9 +384,74 @@ impl<'a> Sema<'a> {
         }
     }
 
-    /// E0505/E0506: every VAR_EXTERNAL has a matching VAR_GLOBAL.
+    /// Where each POU runs: for every POU, the (configuration, resource)
+    /// pairs of the program instances whose program reaches it (through
+    /// calls and function block instances), with the instance's span.
+    fn pou_contexts(&self) -> Vec<Vec<(usize, usize, Span)>> {
+        let n = self.pous.len();
+        let succ = self.pou_successors();
+        let mut out: Vec<Vec<(usize, usize, Span)>> = vec![Vec::new(); n];
+        for (ci, c) in self.configs.iter().enumerate() {
+            for (ri, r) in c.resources.iter().enumerate() {
+                for inst in &r.programs {
+                    let mut seen = vec![false; n];
+                    let mut todo = vec![inst.pou.0 as usize];
+                    while let Some(q) = todo.pop() {
+                        if q >= n || std::mem::replace(&mut seen[q], true) {
+                            continue;
+                        }
+                        if !out[q].iter().any(|&(c2, r2, _)| (c2, r2) == (ci, ri)) {
+                            out[q].push((ci, ri, inst.span));
+                        }
+                        todo.extend(succ[q].iter().copied());
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// The POUs each POU reaches directly: those it calls and the types of
+    /// its function block instances.
+    fn pou_successors(&self) -> Vec<Vec<usize>> {
+        let mut succ: Vec<Vec<usize>> = vec![Vec::new(); self.pous.len()];
+        for &(a, b, _) in &self.call_edges {
+            succ[a.0 as usize].push(b.0 as usize);
+        }
+        for (pou, out) in self.pous.iter().zip(succ.iter_mut()) {
+            for v in &pou.vars {
+                if v.section == Section::External || v.section == Section::InOut {
+                    continue;
+                }
+                if let Some(q) = self.fb_in(v.ty) {
+                    out.push(q.0 as usize);
+                }
+            }
+        }
+        succ
+    }
+
+    /// The function block type a variable of type `t` holds instances of
+    /// (itself, or the elements of an array).
+    fn fb_in(&self, t: crate::TypeId) -> Option<PouId> {
+        match self.types.kind(t) {
+            TypeKind::Fb(q) => Some(*q),
+            TypeKind::Array { elem, .. } => self.fb_in(*elem),
+            _ => None,
+        }
+    }
+
+    /// E0505/E0506: every VAR_EXTERNAL has a matching VAR_GLOBAL where its
+    /// POU runs: in each configuration (and resource) whose program
+    /// instances reach the POU, the global it binds there; for a POU no
+    /// configuration runs, the global outside configurations, if the
+    /// project has one of that name, else (a project without
+    /// configurations, whose programs run on their own) an error, and
+    /// nothing for a POU of a library that nothing here runs.
     pub(crate) fn check_externals(&mut self) {
-        for pi in 0..self.pous.len() {
+        let contexts = self.pou_contexts();
+        let has_configs = !self.configs.is_empty();
+        for (pi, ctx) in contexts.iter().enumerate() {
             if self.pous[pi].is_std {
                 continue;
             }
@@ -402,67 +465,133 @@ impl<'a> Sema<'a> {
                 .collect();
             for (_, v) in vars {
                 let shown = self.sym_name(v.name);
-                let candidates: Vec<crate::GlobalId> = self
-                    .globals
-                    .iter()
-                    .enumerate()
-                    .filter(|(_, g)| g.var.name == v.name)
-                    .map(|(i, _)| crate::GlobalId(i as u32))
-                    .collect();
-                if candidates.is_empty() {
-                    self.emit(
-                        Diagnostic::new(Code::E0505, v.span, format!("no VAR_GLOBAL declares `{shown}`"))
-                            .with_label("external without a global")
-                            .with_help(format!("declare `{shown}` in a VAR_GLOBAL of the configuration that runs this POU")),
-                    );
-                    continue;
-                }
-                // Each configuration that instantiates the program must see it.
-                let mut reported_missing = false;
-                for ci in 0..self.configs.len() {
-                    for ri in 0..self.configs[ci].resources.len() {
-                        let insts: Vec<Span> = self.configs[ci].resources[ri]
-                            .programs
-                            .iter()
-                            .filter(|i| i.pou == p)
-                            .map(|i| i.span)
-                            .collect();
-                        for span in insts {
-                            if self.config_global(v.name, ci, Some(ri)).is_none()
-                                && !reported_missing
-                            {
-                                reported_missing = true;
-                                self.emit(
-                                    Diagnostic::new(Code::E0505, v.span, format!("no VAR_GLOBAL declares `{shown}` in the configuration that runs this POU"))
-                                        .with_secondary(span, "instantiated here"),
-                                );
+                // The globals it binds, each with where.
+                let mut bound: Vec<(crate::GlobalId, Option<Span>)> = Vec::new();
+                let mut missing: Option<Span> = None;
+                for &(ci, ri, span) in ctx {
+                    match self.config_global(v.name, ci, Some(ri)) {
+                        Some(g) => {
+                            if !bound.iter().any(|(h, _)| *h == g) {
+                                bound.push((g, Some(span)));
                             }
+                        }
+                        None => {
+                            missing.get_or_insert(span);
                         }
                     }
                 }
-                for g in candidates {
+                if ctx.is_empty() {
+                    let top = self.globals.iter().position(|g| {
+                        g.owner == crate::GlobalOwner::TopLevel && g.var.name == v.name
+                    });
+                    match top {
+                        Some(g) => bound.push((crate::GlobalId(g as u32), None)),
+                        None if !has_configs && self.runs_alone(p) => {
+                            self.emit(
+                                Diagnostic::new(Code::E0505, v.span, format!("no VAR_GLOBAL declares `{shown}`"))
+                                    .with_label("external without a global")
+                                    .with_help(format!("declare `{shown}` in a VAR_GLOBAL, or in the configuration that runs this POU")),
+                            );
+                            continue;
+                        }
+                        None => {}
+                    }
+                }
+                if let Some(span) = missing {
+                    self.emit(
+                        Diagnostic::new(Code::E0505, v.span, format!("no VAR_GLOBAL declares `{shown}` in the configuration that runs this POU"))
+                            .with_secondary(span, "instantiated here"),
+                    );
+                }
+                for (g, inst) in bound {
                     let gd = self.globals[g.0 as usize].var.clone();
                     let same = self.types.compat(gd.ty, v.ty, false) == crate::Compat::Same
                         && self.types.compat(v.ty, gd.ty, false) == crate::Compat::Same;
-                    if !same {
-                        let msg = format!(
+                    let msg = if !same {
+                        format!(
                             "`{shown}` is declared {} here but {} in VAR_GLOBAL",
                             self.tname(v.ty),
                             self.tname(gd.ty)
-                        );
-                        self.emit(
-                            Diagnostic::new(Code::E0506, v.span, msg)
-                                .with_secondary(gd.span, "the global"),
-                        );
-                        break;
+                        )
+                    } else if gd.constant && !v.constant {
+                        format!(
+                            "`{shown}` is a CONSTANT global: declare it in VAR_EXTERNAL CONSTANT"
+                        )
+                    } else {
+                        continue;
+                    };
+                    let mut d = Diagnostic::new(Code::E0506, v.span, msg)
+                        .with_secondary(gd.span, "the global");
+                    if let Some(span) = inst {
+                        d = d.with_secondary(span, "where it binds: this instance runs the POU");
                     }
-                    if gd.constant && !v.constant {
-                        self.emit(
-                            Diagnostic::new(Code::E0506, v.span, format!("`{shown}` is a CONSTANT global: declare it in VAR_EXTERNAL CONSTANT"))
-                                .with_secondary(gd.span, "the global"),
-                        );
-                        break;
-                    }
+                    self.emit(d);
+                    break;
+                }
+            }
+        }
+        self.check_hidden_globals(&contexts);
+    }
+
+    /// Whether a POU runs in a project without configurations: a PROGRAM,
+    /// or a POU some PROGRAM reaches.
+    fn runs_alone(&self, p: PouId) -> bool {
+        let n = self.pous.len();
+        let succ = self.pou_successors();
+        let mut seen = vec![false; n];
+        let mut todo: Vec<usize> = (0..n)
+            .filter(|&i| !self.pous[i].is_std && self.pous[i].kind == PouKind::Program)
+            .collect();
+        while let Some(q) = todo.pop() {
+            if q >= n || std::mem::replace(&mut seen[q], true) {
+                continue;
+            }
+            todo.extend(succ[q].iter().copied());
+        }
+        seen.get(p.0 as usize).copied().unwrap_or(false)
+    }
+
+    /// W0109 for a local variable named like a global that a VAR_EXTERNAL
+    /// of its POU would bind where the POU runs (a global outside
+    /// configurations, or one of a configuration that runs it): the local
+    /// may have been meant as that external. Interface variables (inputs,
+    /// outputs) are the POU's API and are not reported.
+    fn check_hidden_globals(&mut self, contexts: &[Vec<(usize, usize, Span)>]) {
+        for (pi, ctx) in contexts.iter().enumerate() {
+            let partial = match &self.ast.items[self.pous[pi].item] {
+                Item::Pou(ast_pou) => ast_pou.partial,
+                _ => false,
+            };
+            if self.pous[pi].is_std || partial {
+                continue;
+            }
+            let locals: Vec<(stc_syntax::Symbol, Span)> = self.pous[pi]
+                .vars
+                .iter()
+                .filter(|v| !v.implicit && matches!(v.section, Section::Var | Section::Temp))
+                .map(|v| (v.name, v.span))
+                .collect();
+            for (name, span) in locals {
+                if !self.global_names.contains(&name) {
+                    continue;
+                }
+                let visible = self
+                    .globals
+                    .iter()
+                    .any(|g| g.var.name == name && g.owner == crate::GlobalOwner::TopLevel)
+                    || ctx
+                        .iter()
+                        .any(|&(ci, ri, _)| self.config_global(name, ci, Some(ri)).is_some());
+                if visible {
+                    let shown = self.spelled(name, span);
+                    self.emit(
+                        Diagnostic::new(
+                            Code::W0109,
+                            span,
+                            format!("`{shown}` hides a global variable of the same name"),
+                        )
+                        .with_label("hides a global variable"),
+                    );
                 }
             }
         }

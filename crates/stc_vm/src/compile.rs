@@ -106,6 +106,8 @@ pub struct Compiler<'a> {
     data: Vec<u8>,
     io: Vec<IoSlot>,
     io_map: FxHashMap<DirectAddress, u32>,
+    /// The private variables of unbound VAR_EXTERNALs, by (POU, variable).
+    private_externals: FxHashMap<(u32, usize), u32>,
     global_off: Vec<u32>,
     consts: Vec<u8>,
     const_map: FxHashMap<Vec<u8>, u32>,
@@ -141,6 +143,7 @@ pub fn compile(m: &Module) -> Result<Image, CompileError> {
         data: Vec::new(),
         io: Vec::new(),
         io_map: FxHashMap::default(),
+        private_externals: FxHashMap::default(),
         global_off: Vec::new(),
         consts: Vec::new(),
         const_map: FxHashMap::default(),
@@ -527,7 +530,10 @@ impl<'a> Compiler<'a> {
                 let target = if let Some(a) = v.location.as_ref().filter(|a| !a.is_incomplete()) {
                     Some(self.io_slot(a, v.ty))
                 } else if v.section == Section::External {
-                    self.bind_global(v.name, ctx)
+                    Some(match self.bind_global(v.name, v.ty, ctx) {
+                        Some(t) => t,
+                        None => self.private_external(p, i, v.ty),
+                    })
                 } else {
                     None
                 };
@@ -550,7 +556,27 @@ impl<'a> Compiler<'a> {
 
     /// The global a VAR_EXTERNAL named `name` refers to, in a configuration
     /// (and resource) or among the top-level globals.
-    fn bind_global(&self, name: stc_syntax::Symbol, ctx: Option<(usize, usize)>) -> Option<u32> {
+    /// The variable a VAR_EXTERNAL gets when no global of its name and type
+    /// exists where it runs (a program run on its own, `--program`, whose
+    /// globals are in a configuration): its own, at the type's default, one
+    /// per POU and variable, never another variable's memory.
+    fn private_external(&mut self, p: PouId, v: usize, t: TypeId) -> u32 {
+        if let Some(&off) = self.private_externals.get(&(p.0, v)) {
+            return off;
+        }
+        let lay = self.l.of(t);
+        let off = self.alloc_data(lay.size, lay.align).unwrap_or(0);
+        self.write_init(t, off, None, None);
+        self.private_externals.insert((p.0, v), off);
+        off
+    }
+
+    fn bind_global(
+        &self,
+        name: stc_syntax::Symbol,
+        ty: TypeId,
+        ctx: Option<(usize, usize)>,
+    ) -> Option<u32> {
         let m = self.m;
         let named = |g: &stc_sema::GlobalId| m.globals[g.0 as usize].name == name;
         if let Some((c, r)) = ctx {
@@ -574,8 +600,11 @@ impl<'a> Compiler<'a> {
                         .any(|r| r.globals.iter().any(|g| g.0 as usize == gi))
             })
         };
-        let top = (0..m.globals.len()).find(|&i| m.globals[i].name == name && !in_config(i));
-        let any = (0..m.globals.len()).find(|&i| m.globals[i].name == name);
+        // (Outside the configurations that sema checked: only a global of
+        // the external's type.)
+        let fits = |i: usize| m.globals[i].name == name && m.same_type(m.globals[i].ty, ty);
+        let top = (0..m.globals.len()).find(|&i| fits(i) && !in_config(i));
+        let any = (0..m.globals.len()).find(|&i| fits(i));
         top.or(any).and_then(|i| self.global_off.get(i).copied())
     }
 

@@ -89,6 +89,8 @@ struct Gen<'a> {
     /// The POUs the program uses (others, such as unused standard FBs, are
     /// not generated).
     used: Vec<bool>,
+    /// The POUs whose body is generated (`called_pous`).
+    called: Vec<bool>,
     /// The type of each process-image slot: of the first variable located
     /// there, else of its address.
     io_types: FxHashMap<DirectAddress, TypeId>,
@@ -130,10 +132,12 @@ pub fn program(m: &Module, locate: Locate<'_>) -> Result<Program, Error> {
         f: Func::default(),
         contexts,
         used: used_pous(m),
+        called: Vec::new(),
         io_types: io_types(m),
         image_header: String::new(),
         private_cells: FxHashSet::default(),
     };
+    g.called = called_pous(m, &g.used);
     g.run()
 }
 
@@ -159,7 +163,9 @@ impl<'a> Gen<'a> {
             self.prototype(p);
         }
         for &p in &used {
-            self.pou_body(p)?;
+            if self.called[p] {
+                self.pou_body(p)?;
+            }
         }
         self.resolve_call_checks();
         for &p in &used {
@@ -412,8 +418,10 @@ impl<'a> Gen<'a> {
 
     fn prototype(&mut self, p: usize) {
         let m = self.m;
-        let sig = self.signature(p);
-        let _ = writeln!(self.protos, "{sig};");
+        if self.called[p] {
+            let sig = self.signature(p);
+            let _ = writeln!(self.protos, "{sig};");
+        }
         if m.pous[p].kind != PouKind::Function {
             let _ = writeln!(
                 self.protos,
@@ -483,6 +491,12 @@ impl<'a> Gen<'a> {
         let mut out = format!("{sig}\n{{\n");
         for d in &self.f.decls {
             let _ = writeln!(out, "    {d}");
+        }
+        // An empty body (or one that touches no variable) still takes its
+        // instance or frame: say it is unused on purpose (-Wunused-parameter).
+        let param = if function { "f" } else { "self" };
+        if !self.f.body.iter().any(|l| uses_ident(l, param)) {
+            let _ = writeln!(out, "    (void){param};");
         }
         for l in &self.f.body {
             out.push_str(l);
@@ -2455,6 +2469,35 @@ fn bind_global(
 
 /// The POUs a program uses: every PROGRAM, and what their variables,
 /// the globals and their bodies need (instances and calls), transitively.
+/// Whether `text` mentions the C identifier `id` (not as part of a longer
+/// identifier).
+fn uses_ident(text: &str, id: &str) -> bool {
+    let word = |c: char| c.is_ascii_alphanumeric() || c == '_';
+    text.match_indices(id).any(|(i, _)| {
+        let before = text[..i].chars().next_back();
+        let after = text[i + id.len()..].chars().next();
+        !before.is_some_and(word) && !after.is_some_and(word)
+    })
+}
+
+/// The POUs whose body runs: programs (the harness calls them) and every
+/// POU a used POU calls. A function block used only as the type of an
+/// instance that is never called needs its struct and init function, not
+/// its body.
+fn called_pous(m: &Module, used: &[bool]) -> Vec<bool> {
+    let mut called: Vec<bool> = m.pous.iter().map(|p| p.kind == PouKind::Program).collect();
+    for (p, pou) in m.pous.iter().enumerate() {
+        if used[p] {
+            stc_ir::visit::calls(&pou.body, &mut |c| {
+                if let Some(x) = called.get_mut(c.0 as usize) {
+                    *x = true;
+                }
+            });
+        }
+    }
+    called
+}
+
 fn used_pous(m: &Module) -> Vec<bool> {
     let mut used = vec![false; m.pous.len()];
     let mut work: Vec<usize> = (0..m.pous.len())

@@ -76,6 +76,10 @@ pub(crate) struct Sema<'a> {
     pub sources: &'a SourceMap,
     pub prelude: Option<Span>,
     pub opts: Options,
+    /// Inside the constant of a declared type (an array bound, a string
+    /// length, a subrange limit): a top-level VAR_GLOBAL CONSTANT may be
+    /// named there without VAR_EXTERNAL (see `const_int`).
+    pub(crate) in_type_constant: bool,
 
     pub types: TypeTable,
     pub names: FxHashMap<Symbol, GlobalName>,
@@ -132,6 +136,7 @@ impl<'a> Sema<'a> {
             sources,
             prelude,
             opts,
+            in_type_constant: false,
             types: TypeTable::new(),
             names: FxHashMap::default(),
             type_decls: Vec::new(),

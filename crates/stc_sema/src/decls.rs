@@ -333,7 +333,13 @@ impl<'a> Sema<'a> {
         scope: Scope,
         what: &str,
     ) -> Option<i128> {
+        // A top-level VAR_GLOBAL CONSTANT may size a type inside a POU
+        // without VAR_EXTERNAL (`STRING[STRING_LENGTH]`, as OSCAT and every
+        // CODESYS library write it; a FUNCTION cannot even declare the
+        // external): only its value is used, at compile time.
+        let outer = std::mem::replace(&mut self.in_type_constant, true);
         let t = self.check_expr(e, None, scope);
+        self.in_type_constant = outer;
         if t == TypeId::ERROR {
             return None;
         }

@@ -465,6 +465,22 @@ impl<'a> Sema<'a> {
                         var.section,
                         Section::Input | Section::Output | Section::InOut
                     );
+                    if var.constant && var.section == Section::External {
+                        // A VAR_EXTERNAL CONSTANT has its global's value when
+                        // only one global has its name (so it is a constant
+                        // whatever configuration runs the POU).
+                        let named: Vec<usize> = (0..self.globals.len())
+                            .filter(|&i| self.globals[i].var.name == id.sym)
+                            .collect();
+                        if let [g] = named[..] {
+                            self.resolve_global(GlobalId(g as u32));
+                            let gv = &self.globals[g].var;
+                            if let (true, Some(InitValue::Scalar(val))) = (gv.constant, &gv.init) {
+                                self.consts.insert(e, val.clone());
+                            }
+                        }
+                        return self.pous[p.0 as usize].vars[v.0 as usize].ty;
+                    }
                     if var.constant && !from_caller {
                         if let Some(InitValue::Scalar(val)) = &var.init {
                             self.consts.insert(e, val.clone());
@@ -475,6 +491,16 @@ impl<'a> Sema<'a> {
                         }
                     }
                     return var.ty;
+                }
+                if self.in_type_constant {
+                    let top = self.globals.iter().position(|g| {
+                        g.var.name == id.sym
+                            && g.var.constant
+                            && g.owner == crate::GlobalOwner::TopLevel
+                    });
+                    if let Some(g) = top {
+                        return self.global_ref(e, GlobalId(g as u32));
+                    }
                 }
             }
             Scope::Config(c, r) => {
@@ -554,11 +580,26 @@ impl<'a> Sema<'a> {
         };
         if let Some(s) = self.did_you_mean(&shown, candidates.iter().map(|s| s.as_str())) {
             d = d.with_help(format!("did you mean `{s}`?"));
-        } else if let Scope::Pou(_) = scope {
-            if self.globals.iter().any(|g| g.var.name == id.sym) {
-                d = d.with_help(format!(
-                    "`{shown}` is a global variable: declare it in VAR_EXTERNAL to use it here"
-                ));
+        } else if let Scope::Pou(p) = scope {
+            if let Some(g) = self.globals.iter().find(|g| g.var.name == id.sym) {
+                let function = self.pous[p.0 as usize].kind == stc_syntax::ast::PouKind::Function;
+                d = d.with_help(if self.in_type_constant && !g.var.constant {
+                    format!("`{shown}` is a global variable, not a constant")
+                } else if self.in_type_constant {
+                    format!(
+                        "`{shown}` is a constant of a configuration; only a VAR_GLOBAL CONSTANT \
+                         outside configurations can size a type here"
+                    )
+                } else if function {
+                    format!(
+                        "`{shown}` is a global variable, and a FUNCTION cannot use globals: \
+                         pass it as an input"
+                    )
+                } else {
+                    format!(
+                        "`{shown}` is a global variable: declare it in VAR_EXTERNAL to use it here"
+                    )
+                });
             }
         }
         self.emit(d);

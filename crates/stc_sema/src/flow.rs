@@ -69,9 +69,14 @@ impl<'a> Sema<'a> {
             .vars
             .iter()
             .filter(|v| !v.implicit)
-            .map(|v| (v.name, v.span, v.section, v.location.is_some()))
+            .map(|v| {
+                // A declaration whose type was already an error (an
+                // unsupported or unknown type) is not reported again.
+                let quiet = v.location.is_some() || v.ty == crate::TypeId::ERROR;
+                (v.name, v.span, v.section, quiet)
+            })
             .collect();
-        for (i, &(name, span, section, located)) in vars.iter().enumerate() {
+        for (i, &(name, span, section, quiet)) in vars.iter().enumerate() {
             let v = Local {
                 name,
                 span,
@@ -82,7 +87,7 @@ impl<'a> Sema<'a> {
             // A located variable is part of the I/O map (its initial value
             // is the slot's): declaring it is a use.
             if matches!(v.section, Section::Var | Section::Temp)
-                && !located
+                && !quiet
                 && !self.used.contains(&(p, id))
                 && !partial
             {

@@ -43,6 +43,7 @@ pub fn lex(text: &str, base: u32) -> Lexed {
         tokens: Vec::with_capacity(text.len() / 5 + 16),
         trivia: Vec::new(),
         diagnostics: Vec::new(),
+        bad_idents: Vec::new(),
     };
     lx.run();
     Lexed {
@@ -60,6 +61,9 @@ struct Lexer<'a> {
     tokens: Vec<Token>,
     trivia: Vec<Trivia>,
     diagnostics: Vec<Diagnostic>,
+    /// Invalid identifiers already reported (E0005 once per name and file,
+    /// at its first occurrence, usually its declaration).
+    bad_idents: Vec<String>,
 }
 
 /// The position of the first occurrence of `needle` in `hay`.
@@ -258,6 +262,11 @@ impl<'a> Lexer<'a> {
             None
         };
         if let Some(p) = problem {
+            let key = word.to_ascii_lowercase();
+            if self.bad_idents.contains(&key) {
+                return;
+            }
+            self.bad_idents.push(key);
             self.error(
                 Code::E0005,
                 start,

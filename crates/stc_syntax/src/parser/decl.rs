@@ -622,9 +622,14 @@ impl Parser<'_> {
                 if (self.at_word("POINTER") || self.at_word("REFERENCE"))
                     && self.nth_kind(1) == TokenKind::Kw(Keyword::To) =>
             {
+                let what = if self.at_word("POINTER") {
+                    "`POINTER TO` (a CODESYS pointer) is"
+                } else {
+                    "`REFERENCE TO` (a CODESYS reference) is"
+                };
                 self.bump();
                 let to = self.bump();
-                self.unsupported(t.span().to(to.span()), "POINTER TO and REFERENCE TO are");
+                self.unsupported(t.span().to(to.span()), what);
                 self.type_spec();
                 TypeSpecKind::Error
             }

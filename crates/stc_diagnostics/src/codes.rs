@@ -362,6 +362,11 @@ EXIT or RETURN in its body, is not reported.";
     W0109 Warning "local name hides a global one"
 "A local variable has the same name as a global variable, a POU or a data
 type, which it hides inside this POU.";
+    W0110 Warning "function hides a standard function"
+"A FUNCTION is declared with the name of a standard function (ABS, LIMIT,
+CONCAT...). Every call of that name in the project then calls this function,
+with its own parameter types, instead of the standard one; give it another
+name unless that is what you want.";
 }
 
 #[cfg(test)]

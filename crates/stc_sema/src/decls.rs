@@ -105,6 +105,24 @@ impl<'a> Sema<'a> {
                     if !self.register(p.name, GlobalName::Pou(id)) {
                         continue;
                     }
+                    if p.kind == PouKind::Function && !self.in_prelude(p.name.span) {
+                        let key = self.interner.key(p.name.sym);
+                        let standard = stc_values::lookup(key).is_some()
+                            || stc_values::split_lookup(key).is_some()
+                            || matches!(key, "CUR_TIME" | "LOWER_BOUND" | "UPPER_BOUND");
+                        if standard {
+                            let shown = self.spelled(p.name.sym, p.name.span);
+                            self.emit(
+                                Diagnostic::new(
+                                    Code::W0110,
+                                    p.name.span,
+                                    format!("`{shown}` hides the standard function of the same name"),
+                                )
+                                .with_label("calls of this name call this function")
+                                .with_help("give it another name unless it is meant to replace the standard one"),
+                            );
+                        }
+                    }
                     let mut def = PouDef {
                         kind: p.kind,
                         name: p.name.sym,

@@ -219,6 +219,37 @@ impl Parser<'_> {
                 )
     }
 
+    /// An IL body that starts with a formal call, `foo(\n a := 1\n)` with
+    /// no `;` after the `)` and an IL operator with its operand on the next
+    /// line (`ST x`), where ST would need the `;`.
+    fn il_formal_call_first(&self) -> bool {
+        let mut depth = 0usize;
+        for n in 1..4096 {
+            match self.nth_kind(n) {
+                TokenKind::LParen => depth += 1,
+                TokenKind::RParen => {
+                    depth -= 1;
+                    if depth == 0 {
+                        let (close, op, operand) = (self.nth(n), self.nth(n + 1), self.nth(n + 2));
+                        return op.kind == TokenKind::Ident
+                            && IL_OPERATORS
+                                .iter()
+                                .any(|w| w.eq_ignore_ascii_case(self.text_of(op)))
+                            && self.newline_between(close, op)
+                            && !self.newline_between(op, operand)
+                            && matches!(
+                                operand.kind,
+                                TokenKind::Ident | TokenKind::Int | TokenKind::Address
+                            );
+                    }
+                }
+                TokenKind::Eof | TokenKind::Semi => return false,
+                _ => {}
+            }
+        }
+        false
+    }
+
     /// Whether the body that starts here is Instruction List: an IL operator
     /// with an operand, or a label, where ST would have `:=` or a call.
     fn at_il_body(&self) -> bool {
@@ -232,6 +263,9 @@ impl Parser<'_> {
                 let word = self.text_of(self.tok());
                 let next = self.nth_kind(1);
                 if next == TokenKind::Colon {
+                    return true;
+                }
+                if next == TokenKind::LParen && self.il_formal_call_first() {
                     return true;
                 }
                 let il_operator = IL_OPERATORS.iter().any(|op| op.eq_ignore_ascii_case(word))

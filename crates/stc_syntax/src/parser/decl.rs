@@ -336,6 +336,14 @@ impl Parser<'_> {
         let mut constant = false;
         let mut retention = None;
         loop {
+            // `VAR NON_RETAIN : INT;`: a qualifier word followed by `:`,
+            // `,` or AT is a variable (E0022 at its declaration), not a
+            // qualifier.
+            if matches!(self.nth_kind(1), TokenKind::Colon | TokenKind::Comma)
+                || self.nth_kind(1) == TokenKind::Kw(Keyword::At)
+            {
+                break;
+            }
             if self.eat_kw(Keyword::Constant) {
                 constant = true;
             } else if self.eat_kw(Keyword::Retain) {

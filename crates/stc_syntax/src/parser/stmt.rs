@@ -113,6 +113,16 @@ impl Parser<'_> {
             p.expect_semi();
             Some(Stmt { kind, span })
         };
+        // A statement word this file declared as a name (E0022 there):
+        // `exit := 1;` assigns it.
+        if self.reserved_names.contains(&t.kind)
+            && matches!(
+                self.nth_kind(1),
+                TokenKind::Assign | TokenKind::Dot | TokenKind::LBracket | TokenKind::LParen
+            )
+        {
+            return self.expr_statement();
+        }
         match t.kind {
             TokenKind::Semi => {
                 self.bump();

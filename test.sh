@@ -4,15 +4,21 @@
 set -euo pipefail
 cd "$(dirname "$0")"
 
-# The C back end's tests need gcc (present with the Rust toolchain) and
-# cppcheck with its MISRA addon (Debian package cppcheck).
-if ! command -v cppcheck >/dev/null 2>&1; then
-    echo "== installing cppcheck"
-    if [ "$(id -u)" = 0 ]; then
-        apt-get update -qq && apt-get install -y -qq cppcheck
-    else
-        sudo apt-get update -qq && sudo apt-get install -y -qq cppcheck
-    fi
+# The C back end's tests need gcc (present with the Rust toolchain), make,
+# and cppcheck with its MISRA addon (Debian package cppcheck).
+missing=""
+command -v cppcheck >/dev/null 2>&1 || missing="$missing cppcheck"
+command -v make >/dev/null 2>&1 || missing="$missing make"
+command -v gcc >/dev/null 2>&1 || missing="$missing gcc"
+if [ -n "$missing" ]; then
+    echo "== installing$missing"
+    sudo=""
+    [ "$(id -u)" = 0 ] || sudo="sudo"
+    $sudo apt-get update -qq && $sudo apt-get install -y -qq $missing
+fi
+# rustfmt and clippy, when the toolchain is managed by rustup.
+if command -v rustup >/dev/null 2>&1; then
+    rustup component add rustfmt clippy >/dev/null 2>&1 || true
 fi
 
 echo "== cargo fmt --check"

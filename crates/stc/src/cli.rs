@@ -230,7 +230,7 @@ fn run(cli: Cli) -> Outcome {
         } => {
             let opts = common.options();
             if emit == Emit::Ast {
-                let parsed = match load_and_parse(&files) {
+                let parsed = match load_and_parse(&files, &opts) {
                     Ok(p) => p,
                     Err(e) => return usage_error(e),
                 };
@@ -307,9 +307,12 @@ fn run(cli: Cli) -> Outcome {
     }
 }
 
-fn load_and_parse(files: &[PathBuf]) -> Result<driver::Parsed, sources::LoadError> {
+fn load_and_parse(
+    files: &[PathBuf],
+    opts: &driver::Options,
+) -> Result<driver::Parsed, sources::LoadError> {
     let (sm, diags) = sources::load(files)?;
-    Ok(driver::parse(sm, diags))
+    Ok(driver::parse(sm, diags, opts.iec2))
 }
 
 /// Renders the diagnostics and picks the exit status.

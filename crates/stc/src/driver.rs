@@ -58,7 +58,7 @@ pub fn analyse(mut sources: SourceMap, diagnostics: Vec<Diagnostic>, opts: &Opti
         .add(stc_sema::prelude::PRELUDE_NAME, stc_sema::prelude::source())
         .expect("the prelude fits in the position space");
     let prelude = sources.file(prelude_id).span();
-    let mut parsed = parse(sources, diagnostics);
+    let mut parsed = parse(sources, diagnostics, opts.iec2);
     let analysis = stc_sema::analyze(
         &parsed.ast,
         &mut parsed.interner,
@@ -88,9 +88,11 @@ pub fn lower_keeping_sources(a: Analysed) -> (stc_ir::Module, SourceMap) {
 }
 
 /// Parses every file of the source map as one project.
-pub fn parse(sources: SourceMap, mut diagnostics: Vec<Diagnostic>) -> Parsed {
+/// Parses a project; with `iec2`, the words the 3rd edition reserved
+/// (CHAR, LTIME, LDT, CONTINUE...) are names.
+pub fn parse(sources: SourceMap, mut diagnostics: Vec<Diagnostic>, iec2: bool) -> Parsed {
     let mut interner = Interner::new();
-    let (ast, mut diags) = stc_syntax::parse_project(&sources, &mut interner);
+    let (ast, mut diags) = stc_syntax::parse_project_in(&sources, &mut interner, iec2);
     diagnostics.append(&mut diags);
     Parsed {
         sources,

@@ -23,7 +23,7 @@ const CFLAGS: &[&str] = &[
     "-Wconversion",
     "-Wshadow",
     "-Werror",
-    "-O0",
+    "-O1",
     "-fsanitize=undefined,address",
     "-fno-sanitize-recover=all",
     "-DSTC_WATCHDOG",

@@ -12,7 +12,7 @@ use stc_syntax::{dump, print, Interner};
 
 fn parse(path: &Path) -> driver::Parsed {
     let (sm, diags) = stc::sources::load(&common::case_files(path)).expect("readable test file");
-    driver::with_big_stack(move || driver::parse(sm, diags))
+    driver::with_big_stack(move || driver::parse(sm, diags, false))
 }
 
 fn relative(path: &Path) -> String {

@@ -463,7 +463,6 @@ impl<'a> Gen<'a> {
         let col = pou.body.first().map_or(1, |s| s.col);
         self.f.site = self.site_of(line, col);
         let entry_site = self.f.site;
-        self.line(format!("if (stc_step({entry_site}U) != 0U) {{ return; }}"));
         // A function's locals, outputs and result start at their initial
         // values at each call (its inputs and in-outs are set by the caller);
         // an FB's or program's VAR_TEMP likewise.
@@ -486,6 +485,10 @@ impl<'a> Gen<'a> {
             let lv = if function { format!("f->{name}") } else { name };
             self.init_value(&lv, v.ty, v.init.as_ref(), None, 0)?;
         }
+        // The watchdog's step after the initial values: a function stopped
+        // here still hands back an initialised frame (no uninitialised read
+        // in the caller, which leaves at once anyway).
+        self.line(format!("if (stc_step({entry_site}U) != 0U) {{ return; }}"));
         self.block(&pou.body)?;
         let sig = self.signature(p);
         let mut out = format!("{sig}\n{{\n");

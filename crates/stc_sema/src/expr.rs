@@ -390,6 +390,22 @@ impl<'a> Sema<'a> {
                 !self.is_variable_name(id.sym, scope)
                     && self.enum_candidates(id.sym, scope).next().is_some()
             }
+            // A standard function whose result type is fixed by nothing but
+            // its context (LEN, FIND, TRUNC: ANY_INT out): `LEN(s) < pos`
+            // compares INTs when `pos` is an INT, as with a literal.
+            ExprKind::Call { callee, .. } => match &self.ast.expr(*callee).kind {
+                ExprKind::Name(id) if !self.names.contains_key(&id.sym) => {
+                    let f = stc_values::lookup(self.interner.key(id.sym));
+                    f.is_some_and(|f| match f.ret {
+                        stc_values::TyPat::Var(k, _) => !f
+                            .params
+                            .iter()
+                            .any(|p| matches!(p.ty, stc_values::TyPat::Var(j, _) if j == k)),
+                        stc_values::TyPat::Elem(_) => false,
+                    })
+                }
+                _ => false,
+            },
             _ => false,
         }
     }

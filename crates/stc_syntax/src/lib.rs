@@ -16,4 +16,4 @@ pub mod print;
 pub mod token;
 
 pub use intern::{Interner, Symbol};
-pub use parser::{parse_file, parse_project, FileParse};
+pub use parser::{parse_file, parse_file_in, parse_project, parse_project_in, FileParse};

@@ -732,6 +732,30 @@ fn generated() -> Vec<StdFunction> {
             ));
         }
     }
+    // 3rd edition, overloaded on the input: TRUNC_<int> (any real in) and
+    // TO_BCD_<bits> (any integer in).
+    for &b in &ints {
+        out.push(conv_entry(
+            format!("TRUNC_{}", b.name()),
+            I::Trunc {
+                from: E::Lreal,
+                to: Some(b),
+            },
+            v(0, G::AnyReal),
+            el(b),
+        ));
+    }
+    for &w in &words {
+        out.push(conv_entry(
+            format!("TO_BCD_{}", w.name()),
+            I::IntToBcd {
+                from: E::Ulint,
+                to: w,
+            },
+            v(0, G::AnyInt),
+            el(w),
+        ));
+    }
     for &b in &ints {
         out.push(conv_entry(
             format!("BCD_TO_{}", b.name()),

@@ -294,11 +294,31 @@ fn sel(e: &mut dyn Emit, args: &[Val], dst: &Val, cap: u32) {
 /// condition (strings through the runtime).
 fn greater(a: &Val, b: &Val, max: bool) -> Option<String> {
     let sym = if max { ">" } else { "<" };
+    // An unsigned zero is never greater than anything: no test (gcc's
+    // -Wtype-limits, MISRA's invariant condition), no statement.
+    let unsigned = a
+        .elem
+        .is_some_and(|t| crate::names::elem_c(t).starts_with('u') && t != E::Bool);
+    if max && unsigned && is_zero_literal(&a.x) {
+        return None;
+    }
     match a.elem? {
         E::String => Some(format!("stc_str_cmp({}, {}) {sym} 0", a.x, b.x)),
         E::Wstring => Some(format!("stc_wstr_cmp({}, {}) {sym} 0", a.x, b.x)),
         _ => Some(format!("{} {sym} {}", a.p(), b.p())),
     }
+}
+
+/// Whether C text is an integer literal zero as `names::literal` writes
+/// it (`0U`, `((uint32_t)0U)`, `UINT64_C(0)`).
+fn is_zero_literal(x: &str) -> bool {
+    let core = x.trim_matches(|c| c == '(' || c == ')' || c == ' ');
+    let core = core
+        .rsplit(')')
+        .next()
+        .unwrap_or(core)
+        .trim_start_matches("UINT64_C(");
+    matches!(core, "0U" | "0" | "0ULL" | "0UL")
 }
 
 /// Where MAX, MIN and LIMIT keep their running result: the destination,
@@ -371,8 +391,10 @@ fn limit(e: &mut dyn Emit, args: &[Val], dst: &Val, cap: u32) {
         Some(_) => {
             let acc = accumulator(e, args, dst);
             set(e, &acc, &x.x);
-            if let (Some(lo), Some(hi)) = (greater(mn, &acc, true), greater(mx, &acc, false)) {
+            if let Some(lo) = greater(mn, &acc, true) {
                 e.stmt(format!("if ({lo}) {{ {} = {}; }}", acc.x, mn.x));
+            }
+            if let Some(hi) = greater(mx, &acc, false) {
                 e.stmt(format!("if ({hi}) {{ {} = {}; }}", acc.x, mx.x));
             }
             if acc.x != dst.x {

@@ -24,7 +24,7 @@ use stc_diagnostics::{Code, Diagnostic, Span};
 use crate::ast::{Ast, ExprId, ExprKind, Ident, Item};
 use crate::intern::Interner;
 use crate::lexer::{lex, Trivia, TriviaKind};
-use crate::token::{Keyword, Token, TokenKind};
+use crate::token::{ElemType, Keyword, Token, TokenKind};
 
 /// Deepest recursion of nested statements, parentheses and types.
 pub const MAX_NESTING: u32 = 256;
@@ -40,7 +40,42 @@ pub struct FileParse {
 /// Lexes and parses one file (whose first byte is at `base` in the source
 /// map), appending its items to `ast`.
 pub fn parse_file(text: &str, base: u32, ast: &mut Ast, interner: &mut Interner) -> FileParse {
-    let lexed = lex(text, base);
+    parse_file_in(text, base, ast, interner, false)
+}
+
+/// The words the 3rd edition made keywords: in 2nd-edition code (`--std
+/// iec2`) they are ordinary names (`char : BYTE;`, a member `LDT`).
+fn third_edition_word(k: TokenKind) -> bool {
+    matches!(
+        k,
+        TokenKind::Elem(
+            ElemType::Char
+                | ElemType::Wchar
+                | ElemType::Ltime
+                | ElemType::Ldate
+                | ElemType::Ltod
+                | ElemType::Ldt
+        ) | TokenKind::Kw(Keyword::Continue)
+    )
+}
+
+/// [`parse_file`] for an edition: with `iec2`, the words the 3rd edition
+/// reserved are names.
+pub fn parse_file_in(
+    text: &str,
+    base: u32,
+    ast: &mut Ast,
+    interner: &mut Interner,
+    iec2: bool,
+) -> FileParse {
+    let mut lexed = lex(text, base);
+    if iec2 {
+        for t in lexed.tokens.iter_mut() {
+            if third_edition_word(t.kind) {
+                t.kind = TokenKind::Ident;
+            }
+        }
+    }
     let mut diagnostics = lexed.diagnostics;
     let pragmas: Vec<Span> = lexed
         .trivia
@@ -754,10 +789,22 @@ pub fn parse_project(
     sources: &stc_diagnostics::SourceMap,
     interner: &mut Interner,
 ) -> (Ast, Vec<Diagnostic>) {
+    parse_project_in(sources, interner, false)
+}
+
+/// [`parse_project`] for an edition (see [`parse_file_in`]); files named
+/// `<...>` (the built-in standard library) are always 3rd edition.
+pub fn parse_project_in(
+    sources: &stc_diagnostics::SourceMap,
+    interner: &mut Interner,
+    iec2: bool,
+) -> (Ast, Vec<Diagnostic>) {
     let mut ast = Ast::default();
     let mut diags = Vec::new();
     for (_, f) in sources.files() {
-        let r = parse_file(&f.text, f.base, &mut ast, interner);
+        // The standard library (`<stdlib>`) is written in the 3rd edition.
+        let edition2 = iec2 && !f.name.starts_with('<');
+        let r = parse_file_in(&f.text, f.base, &mut ast, interner, edition2);
         diags.extend(r.diagnostics);
     }
     (ast, diags)

@@ -65,7 +65,8 @@ impl<'a> Sema<'a> {
         // A part reported as not supported (an IL or SFC body, a METHOD...)
         // may use any variable and assign the result: nothing is known.
         let partial = pou.partial;
-        let vars: Vec<(stc_syntax::Symbol, Span, Section, bool)> = self.pous[p.0 as usize]
+        let vars: Vec<(stc_syntax::Symbol, Span, Section, bool, crate::TypeId)> = self.pous
+            [p.0 as usize]
             .vars
             .iter()
             .filter(|v| !v.implicit)
@@ -73,10 +74,10 @@ impl<'a> Sema<'a> {
                 // A declaration whose type was already an error (an
                 // unsupported or unknown type) is not reported again.
                 let quiet = v.location.is_some() || v.ty == crate::TypeId::ERROR;
-                (v.name, v.span, v.section, quiet)
+                (v.name, v.span, v.section, quiet, v.ty)
             })
             .collect();
-        for (i, &(name, span, section, quiet)) in vars.iter().enumerate() {
+        for (i, &(name, span, section, quiet, ty)) in vars.iter().enumerate() {
             let v = Local {
                 name,
                 span,
@@ -104,7 +105,17 @@ impl<'a> Sema<'a> {
             }
             // (Hiding a global is checked with the externals, once it is
             // known where the POU runs: `check_hidden_globals`.)
+            // An instance or variable named after its own type (`T_PLC_MS :
+            // T_PLC_MS;`, a PC WORX idiom) hides nothing it could mean.
+            let own_type = match self.names.get(&v.name).copied() {
+                Some(GlobalName::Type(i)) => self.type_decls[i].ty == ty,
+                Some(GlobalName::Pou(q)) => {
+                    matches!(self.types.kind(ty), TypeKind::Fb(r) if *r == q)
+                }
+                _ => false,
+            };
             let hidden = match self.names.get(&v.name).copied() {
+                _ if own_type => None,
                 Some(GlobalName::Type(_)) => Some("a data type"),
                 Some(GlobalName::Pou(q)) if !self.pous[q.0 as usize].is_std => {
                     Some(match self.pous[q.0 as usize].kind {

@@ -663,6 +663,30 @@ impl<'a> Sema<'a> {
             | Intrinsic::Not => self.operator_call(e, f, &values, expected, scope, span),
             _ => self.generic_call(e, f, &values, expected, scope, span),
         };
+        // The overloaded TO_<T> converts what the typed S_TO_T would: a pair
+        // with no S_TO_T (BOOL to REAL, DATE to TOD...) is an error here,
+        // not a fault at run time.
+        if let (Intrinsic::Convert { to, .. }, Some(&v)) = (f.intrinsic, values.first()) {
+            let from = self.types.scalar(self.expr_types[v.index()]);
+            if let Some(from) = from.filter(|&s| result != TypeId::ERROR && s != to) {
+                if f.name.starts_with("TO_") && !stc_values::conversion_allowed(from, to) {
+                    let msg = format!(
+                        "`{}` cannot convert {}: there is no {}_TO_{}",
+                        f.name,
+                        from.name(),
+                        from.name(),
+                        to.name()
+                    );
+                    self.emit(
+                        Diagnostic::new(Code::E0407, self.ast.expr(v).span, msg)
+                            .with_label(format!("this is {}", from.name())),
+                    );
+                    self.calls.remove(&e);
+                    self.consts.remove(&e);
+                    return TypeId::ERROR;
+                }
+            }
+        }
         if en.is_some() || eno.is_some() {
             let en = en.and_then(|v| self.en_arg(v, scope));
             let eno = eno.and_then(|(t, n)| self.eno_arg(t, n, scope));

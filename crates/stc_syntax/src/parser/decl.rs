@@ -336,12 +336,11 @@ impl Parser<'_> {
         let mut constant = false;
         let mut retention = None;
         loop {
-            // `VAR NON_RETAIN : INT;`: a qualifier word followed by `:`,
-            // `,` or AT is a variable (E0022 at its declaration), not a
-            // qualifier.
-            if matches!(self.nth_kind(1), TokenKind::Colon | TokenKind::Comma)
-                || self.nth_kind(1) == TokenKind::Kw(Keyword::At)
-            {
+            // `VAR NON_RETAIN : INT;`: a qualifier word followed by `:` or
+            // `,` is a variable (E0022 at its declaration), not a qualifier
+            // (`VAR RETAIN AT %QW1 : WORD;` is the qualifier and an unnamed
+            // located variable).
+            if matches!(self.nth_kind(1), TokenKind::Colon | TokenKind::Comma) {
                 break;
             }
             if self.eat_kw(Keyword::Constant) {

@@ -484,6 +484,10 @@ impl<'a> Gen<'a> {
             }
             let lv = if function { format!("f->{name}") } else { name };
             self.init_value(&lv, v.ty, v.init.as_ref(), None, 0)?;
+            if !function {
+                // A VAR_TEMP only written (an output target) is still used.
+                self.line(format!("(void){lv};"));
+            }
         }
         // The watchdog's step after the initial values: a function stopped
         // here still hands back an initialised frame (no uninitialised read
@@ -1571,6 +1575,10 @@ impl<'a> Gen<'a> {
         );
         for d in &self.f.decls {
             let _ = writeln!(out, "    {d}");
+        }
+        // An instance with nothing to set (an empty FB) still takes it.
+        if !self.f.body.iter().any(|l| uses_ident(l, "self")) {
+            out.push_str("    (void)self;\n");
         }
         for l in &self.f.body {
             out.push_str(l);

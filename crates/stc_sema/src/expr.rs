@@ -103,7 +103,28 @@ impl<'a> Sema<'a> {
                 }
             }
             ExprKind::Index { base, indices } => self.index(e, *base, indices, scope),
-            ExprKind::Call { callee, args } => self.call(e, *callee, args, expected, scope, false),
+            ExprKind::Call { callee, args } => {
+                let t = self.call(e, *callee, args, expected, scope, false);
+                if t == TypeId::VOID {
+                    // A FUNCTION declared without a result type, used as a
+                    // value: said once here, not as "no value" further up.
+                    let name = match &self.ast.expr(*callee).kind {
+                        ExprKind::Name(id) => self.spelled(id.sym, id.span),
+                        _ => "this function".to_string(),
+                    };
+                    self.emit(
+                        Diagnostic::new(
+                            Code::E0301,
+                            self.ast.expr(e).span,
+                            format!("`{name}` has no result: it is declared without a result type"),
+                        )
+                        .with_label("used as a value here")
+                        .with_help("declare its result type (`FUNCTION f : INT`), or call it as a statement"),
+                    );
+                    return TypeId::ERROR;
+                }
+                t
+            }
             ExprKind::Unary { op, operand } => self.unary(e, *op, *operand, expected, scope),
             ExprKind::Binary { op, lhs, rhs } => self.binary(e, *op, *lhs, *rhs, expected, scope),
             ExprKind::Deref(base) => {

@@ -99,9 +99,11 @@ impl Parser<'_> {
             .with_label("expected `;`")
             .with_secondary(prev, "the statement before needs a `;` here");
             self.report(d);
-        } else {
-            self.expected("`;`");
+            // Read on as if the `;` were there: the next line is a statement
+            // of its own (skipping it would lose it, and what depends on it).
+            return;
         }
+        self.expected("`;`");
         self.skip_stmt();
     }
 

@@ -1593,24 +1593,6 @@ fn flexible_value(ast: &stc_syntax::ast::Ast, e: ExprId) -> Option<FlexValue> {
             FlexValue::Int(v) => Some(FlexValue::Int(-v)),
             FlexValue::Real(x) => Some(FlexValue::Real(-x)),
         },
-        // Integer arithmetic over untyped literals (`2 * 60000`): its exact
-        // value decides whether it fits the type the context gives it.
-        ExprKind::Binary { op, lhs, rhs } => {
-            let (FlexValue::Int(a), FlexValue::Int(b)) =
-                (flexible_value(ast, *lhs)?, flexible_value(ast, *rhs)?)
-            else {
-                return None;
-            };
-            let v = match op {
-                BinaryOp::Add => a.checked_add(b),
-                BinaryOp::Sub => a.checked_sub(b),
-                BinaryOp::Mul => a.checked_mul(b),
-                BinaryOp::Div if b != 0 => a.checked_div(b),
-                BinaryOp::Mod if b != 0 => a.checked_rem(b),
-                _ => None,
-            }?;
-            Some(FlexValue::Int(v))
-        }
         _ => None,
     }
 }

@@ -1314,7 +1314,17 @@ impl<'a> Lowerer<'a> {
             }
             AK::PartialAccess { base, size, index } => {
                 let mut p = self.place(*base);
-                p.proj.push(Proj::Part(*size, *index));
+                // A part of a part (`w.%B1.%X1`) is one part of the whole
+                // (`w.%X9`): back ends see at most one, at the end.
+                let bits = |s: stc_syntax::literal::AddrSize| s.bits().max(1);
+                match p.proj.last_mut() {
+                    Some(Proj::Part(outer, at)) if bits(*size) <= bits(*outer) => {
+                        let per = bits(*outer) / bits(*size);
+                        *at = *at * per + *index;
+                        *outer = *size;
+                    }
+                    _ => p.proj.push(Proj::Part(*size, *index)),
+                }
                 p.ty = ty;
                 p
             }

@@ -529,9 +529,12 @@ impl<'a> Lexer<'a> {
         };
         while self.pos < self.src.len() {
             let b = self.src[self.pos];
+            // A partial access has one number (`w.%B1.1` is bit 1 of
+            // byte 1: the `.1` is the next access, not part of this one).
+            let more_parts = kind != TokenKind::PartialAccess;
             if b.is_ascii_alphanumeric()
                 || b == b'*'
-                || (b == b'.' && self.peek(1).is_ascii_digit())
+                || (more_parts && b == b'.' && self.peek(1).is_ascii_digit())
             {
                 self.pos += 1;
             } else {

@@ -1027,7 +1027,8 @@ impl<'a> Gen<'a> {
             let c = names::type_name(self.m, p.ty);
             let read = format!("stc_getpart((uint64_t){lv}, {part}U, {index}U)");
             if part == 1 {
-                self.line(format!("{t} = ({c})({read} != 0U);"));
+                // (Not a cast of the comparison: MISRA C 10.5.)
+                self.line(format!("{t} = ({read} != 0U) ? 1U : 0U;"));
             } else {
                 self.line(format!("{t} = ({c}){read};"));
             }

@@ -723,9 +723,24 @@ impl<'a> Parser<'a> {
     /// INTERFACE, NAMESPACE, a stand-alone METHOD or ACTION: reported once and
     /// skipped whole.
     fn at_unsupported_item(&mut self) -> bool {
+        // A NAMESPACE is reported once and its declarations are read as if
+        // outside it (they are ordinary POUs and types); its end is skipped.
+        if self.at_word("NAMESPACE") && self.nth_kind(1) == TokenKind::Ident {
+            let span = self.tok().span();
+            self.unsupported(span, "namespaces are");
+            self.bump();
+            self.bump();
+            return true;
+        }
+        if self.at_word("END_NAMESPACE") {
+            self.bump();
+            self.eat(TokenKind::Semi);
+            return true;
+        }
         for (word, end, what) in [
             ("INTERFACE", "END_INTERFACE", "interfaces are"),
-            ("NAMESPACE", "END_NAMESPACE", "namespaces are"),
+            ("CLASS", "END_CLASS", "classes (3rd edition) are"),
+            ("ACTIONS", "END_ACTIONS", "ACTIONS blocks are"),
             ("METHOD", "END_METHOD", "methods are"),
             ("PROPERTY", "END_PROPERTY", "properties are"),
             ("ACTION", "END_ACTION", "actions are"),

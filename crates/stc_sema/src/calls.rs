@@ -138,6 +138,12 @@ impl<'a> Sema<'a> {
                     self.loose_args(args, scope);
                     return TypeId::ERROR;
                 }
+                if self.unsupported_names.contains(&id.sym) {
+                    // A POU reported as not supported (a generic function):
+                    // its calls are not reported again.
+                    self.loose_args(args, scope);
+                    return TypeId::ERROR;
+                }
                 if let Scope::Pou(p) = scope {
                     if self.member_may_be_unsupported(p, id.sym) {
                         // An ACTION or METHOD of this POU (`Reset();`), or one

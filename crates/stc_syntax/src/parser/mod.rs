@@ -690,6 +690,27 @@ impl<'a> Parser<'a> {
                 }
                 None
             }
+            TokenKind::Kw(Keyword::Function | Keyword::FunctionBlock)
+                if self.nth_kind(1) == TokenKind::Ident && self.nth_kind(2) == TokenKind::Lt =>
+            {
+                // RuSTy's generic POUs, `FUNCTION f <T: ANY_NUM> : T`: one
+                // E0030, the POU skipped whole, its calls not reported.
+                let span = t.span().to(self.nth(2).span());
+                self.unsupported(span, "generic functions (`<T: ...>`) are");
+                let name = self.nth(1);
+                let name = self.intern_token(name);
+                self.ast.unsupported_names.push(name);
+                let end = if t.kind == TokenKind::Kw(Keyword::Function) {
+                    Keyword::EndFunction
+                } else {
+                    Keyword::EndFunctionBlock
+                };
+                while !self.at(TokenKind::Eof) && !self.eat_kw(end) {
+                    self.bump();
+                }
+                self.superseded.push(span.to(self.prev().span()));
+                None
+            }
             TokenKind::Kw(Keyword::Type) => self.type_block(pragmas),
             TokenKind::Kw(Keyword::Function) => self
                 .pou(crate::ast::PouKind::Function, pragmas)

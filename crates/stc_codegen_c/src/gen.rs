@@ -859,6 +859,10 @@ impl<'a> Gen<'a> {
             Root::Direct(a) => (self.io_access(a, addr_type(m, a))?, addr_type(m, a)),
         };
         let mut deferred = defer;
+        // The bound checks of every index of the place come after all its
+        // index expressions, as on the VM (`a[k][MUX(k, ...)]` faults in
+        // the MUX before `k` is checked).
+        let mut own_checks: Vec<String> = Vec::new();
         for proj in &p.proj {
             match proj {
                 Proj::Field(i) => {
@@ -961,17 +965,16 @@ impl<'a> Gen<'a> {
                     }
                     match deferred.as_deref_mut() {
                         Some(d) => d.extend(checks),
-                        None => {
-                            for c in checks {
-                                self.line(c);
-                            }
-                        }
+                        None => own_checks.extend(checks),
                     }
                     lv = format!("{lv}.a[{}]", flat.join(" + "));
                     ty = elem;
                 }
                 Proj::Part(..) => {}
             }
+        }
+        for c in own_checks {
+            self.line(c);
         }
         Ok(lv)
     }

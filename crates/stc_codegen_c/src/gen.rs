@@ -1524,7 +1524,8 @@ impl<'a> Gen<'a> {
                     for (k, &(c, r)) in self.contexts.clone().iter().enumerate() {
                         // (A context whose global has another type does not run this
                         // POU: sema checks where it runs.)
-                        if let Some(g) = bind_global(m, v.name, v.ty, Some((c, r)))
+                        if let Some(g) = m
+                            .bind_global(v.name, v.ty, Some((c, r)))
                             .filter(|&g| m.same_type(m.globals[g].ty, v.ty))
                         {
                             let kw = if first { "if" } else { "} else if" };
@@ -1536,7 +1537,7 @@ impl<'a> Gen<'a> {
                             first = false;
                         }
                     }
-                    let top = bind_global(m, v.name, v.ty, None);
+                    let top = m.bind_global(v.name, v.ty, None);
                     match (first, top) {
                         (true, Some(g)) => {
                             self.line(format!("self->{name} = &{};", global_lvalue(m, g)))
@@ -2442,44 +2443,6 @@ fn addr_elem(a: &DirectAddress) -> ElemType {
 
 fn addr_type(m: &Module, a: &DirectAddress) -> TypeId {
     m.types_elem(addr_elem(a))
-}
-
-/// The global a VAR_EXTERNAL named `name` refers to (as the VM binds it).
-fn bind_global(
-    m: &Module,
-    name: stc_syntax::Symbol,
-    ty: TypeId,
-    ctx: Option<(usize, usize)>,
-) -> Option<usize> {
-    let named = |g: &stc_sema::GlobalId| m.globals[g.0 as usize].name == name;
-    if let Some((c, r)) = ctx {
-        let conf = &m.configs[c];
-        if let Some(g) = conf
-            .resources
-            .get(r)
-            .and_then(|res| res.globals.iter().find(|g| named(g)))
-        {
-            return Some(g.0 as usize);
-        }
-        if let Some(g) = conf.globals.iter().find(|g| named(g)) {
-            return Some(g.0 as usize);
-        }
-        return None;
-    }
-    let in_config = |gi: usize| {
-        m.configs.iter().any(|c| {
-            c.globals.iter().any(|g| g.0 as usize == gi)
-                || c.resources
-                    .iter()
-                    .any(|r| r.globals.iter().any(|g| g.0 as usize == gi))
-        })
-    };
-    // (Outside the configurations that sema checked: only a global of the
-    // external's type.)
-    let fits = |i: usize| m.globals[i].name == name && m.same_type(m.globals[i].ty, ty);
-    let top = (0..m.globals.len()).find(|&i| fits(i) && !in_config(i));
-    let any = (0..m.globals.len()).find(|&i| fits(i));
-    top.or(any)
 }
 
 /// The POUs a program uses: every PROGRAM, and what their variables,

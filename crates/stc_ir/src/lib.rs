@@ -58,6 +58,45 @@ pub struct Module {
 }
 
 impl Module {
+    /// The global a VAR_EXTERNAL named `name` of type `ty` binds when its
+    /// POU runs in `ctx` (configuration, resource): the resource's, else
+    /// the configuration's, else one outside configurations; run on its own
+    /// (`None`), or where none of those has it, a global of that name and
+    /// type outside configurations, else in any configuration. `None`: the
+    /// external has no global (back ends give it a private variable). One
+    /// rule for every back end.
+    pub fn bind_global(
+        &self,
+        name: Symbol,
+        ty: TypeId,
+        ctx: Option<(usize, usize)>,
+    ) -> Option<usize> {
+        let named = |g: &&GlobalId| self.globals[g.0 as usize].name == name;
+        if let Some(conf) = ctx.and_then(|(c, _)| self.configs.get(c)) {
+            let res = ctx.and_then(|(_, r)| conf.resources.get(r));
+            if let Some(g) = res.and_then(|res| res.globals.iter().find(named)) {
+                return Some(g.0 as usize);
+            }
+            if let Some(g) = conf.globals.iter().find(named) {
+                return Some(g.0 as usize);
+            }
+        }
+        let in_config = |gi: usize| {
+            self.configs.iter().any(|c| {
+                c.globals.iter().any(|g| g.0 as usize == gi)
+                    || c.resources
+                        .iter()
+                        .any(|r| r.globals.iter().any(|g| g.0 as usize == gi))
+            })
+        };
+        // (Outside the configurations that sema checked: only a global of
+        // the external's type.)
+        let fits =
+            |i: usize| self.globals[i].name == name && self.same_type(self.globals[i].ty, ty);
+        let top = (0..self.globals.len()).find(|&i| fits(i) && !in_config(i));
+        top.or_else(|| (0..self.globals.len()).find(|&i| fits(i)))
+    }
+
     /// Whether two types are the same type (assignable both ways without
     /// conversion), as a VAR_EXTERNAL and its VAR_GLOBAL must be.
     pub fn same_type(&self, a: TypeId, b: TypeId) -> bool {

@@ -530,7 +530,8 @@ impl<'a> Compiler<'a> {
                 let target = if let Some(a) = v.location.as_ref().filter(|a| !a.is_incomplete()) {
                     Some(self.io_slot(a, v.ty))
                 } else if v.section == Section::External {
-                    Some(match self.bind_global(v.name, v.ty, ctx) {
+                    let bound = m.bind_global(v.name, v.ty, ctx);
+                    Some(match bound.and_then(|g| self.global_off.get(g).copied()) {
                         Some(t) => t,
                         None => self.private_external(p, i, v.ty),
                     })
@@ -569,43 +570,6 @@ impl<'a> Compiler<'a> {
         self.write_init(t, off, None, None);
         self.private_externals.insert((p.0, v), off);
         off
-    }
-
-    fn bind_global(
-        &self,
-        name: stc_syntax::Symbol,
-        ty: TypeId,
-        ctx: Option<(usize, usize)>,
-    ) -> Option<u32> {
-        let m = self.m;
-        let named = |g: &stc_sema::GlobalId| m.globals[g.0 as usize].name == name;
-        if let Some((c, r)) = ctx {
-            let conf = &m.configs[c];
-            if let Some(g) = conf
-                .resources
-                .get(r)
-                .and_then(|res| res.globals.iter().find(|g| named(g)))
-            {
-                return self.global_off.get(g.0 as usize).copied();
-            }
-            if let Some(g) = conf.globals.iter().find(|g| named(g)) {
-                return self.global_off.get(g.0 as usize).copied();
-            }
-        }
-        let in_config = |gi: usize| {
-            m.configs.iter().any(|c| {
-                c.globals.iter().any(|g| g.0 as usize == gi)
-                    || c.resources
-                        .iter()
-                        .any(|r| r.globals.iter().any(|g| g.0 as usize == gi))
-            })
-        };
-        // (Outside the configurations that sema checked: only a global of
-        // the external's type.)
-        let fits = |i: usize| m.globals[i].name == name && m.same_type(m.globals[i].ty, ty);
-        let top = (0..m.globals.len()).find(|&i| fits(i) && !in_config(i));
-        let any = (0..m.globals.len()).find(|&i| fits(i));
-        top.or(any).and_then(|i| self.global_off.get(i).copied())
     }
 
     fn instance(&mut self, p: PouId, ctx: Option<(usize, usize)>) -> Result<u32, CompileError> {

@@ -15,6 +15,7 @@
 //! [`realtime::WallClock`], and nothing here touches files or the terminal:
 //! the caller reads stimulus files and prints reports.
 
+pub mod engine;
 pub mod error;
 pub mod path;
 pub mod realtime;
@@ -27,6 +28,7 @@ pub mod value;
 #[cfg(test)]
 mod testing;
 
+pub use engine::{Engine, Memory};
 pub use error::Error;
 pub use report::{Format, Report};
 pub use schedule::{choose, Chosen, Plan};

@@ -11,6 +11,7 @@
 use stc_syntax::literal::{parse_address, parse_based_int, parse_int, DirectAddress};
 use stc_vm::image::{Image, ProgramInst, TypeDesc, TypeRef, VarDesc, VarKind};
 
+use crate::engine::Memory;
 use crate::error::{Error, Result};
 
 /// A parsed path, before resolution.
@@ -176,15 +177,12 @@ impl Loc {
 
     /// The address now, following references through `mem`; `None` when a
     /// reference points outside it.
-    pub fn address(&self, mem: &[u8]) -> Option<u32> {
+    pub fn address(&self, mem: &(impl Memory + ?Sized)) -> Option<u32> {
         let mut a = self.base;
         for s in &self.steps {
             match *s {
                 Step::Add(n) => a = a.checked_add(n)?,
-                Step::Deref => {
-                    let b = mem.get(a as usize..a as usize + 4)?;
-                    a = u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
-                }
+                Step::Deref => a = mem.deref(a)?,
             }
         }
         Some(a)

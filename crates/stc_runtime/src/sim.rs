@@ -23,6 +23,8 @@ use stc_values::{convert, Value};
 use stc_vm::image::{Image, Source, TypeRef, VarKind};
 use stc_vm::{Machine, VmFault};
 
+use crate::engine::{read_value, write_value, Engine};
+
 use crate::error::{Error, Result};
 use crate::path::{Place, Scope, View};
 use crate::report::Report;
@@ -72,8 +74,9 @@ struct Inputs {
 }
 
 pub struct Simulation {
+    /// The engine's program model (shared with it, read only).
     image: Arc<Image>,
-    machine: Machine,
+    engine: Box<dyn Engine>,
     plan: Plan,
     watch: Vec<Place>,
     sets: Vec<(Place, Value)>,
@@ -98,11 +101,21 @@ impl Simulation {
         opts: &Options,
         stimulus: Option<&Stimulus>,
     ) -> Result<Simulation> {
-        let chosen = choose(&image, opts.config.as_deref(), opts.program.as_deref())?;
-        let plan = Plan::new(&image, chosen, opts.tick_ns)?;
-        let machine = Machine::new(Arc::clone(&image));
+        Simulation::with_engine(Box::new(Machine::new(image)), opts, stimulus)
+    }
+
+    /// The same on any engine ([`crate::engine`]).
+    pub fn with_engine(
+        engine: Box<dyn Engine>,
+        opts: &Options,
+        stimulus: Option<&Stimulus>,
+    ) -> Result<Simulation> {
+        let image_arc = Arc::clone(engine.image());
+        let image = &*image_arc;
+        let chosen = choose(image, opts.config.as_deref(), opts.program.as_deref())?;
+        let plan = Plan::new(image, chosen, opts.tick_ns)?;
         let scope = Scope {
-            image: &image,
+            image,
             instances: &plan.instances,
             config: plan.config,
         };
@@ -113,7 +126,7 @@ impl Simulation {
                 .split_once('=')
                 .ok_or_else(|| Error::Option(format!("--set `{s}`: expected PATH=VALUE")))?;
             let place = writable(scope.resolve(path)?)?;
-            let v = parse_for(&image, &place.view, value)
+            let v = parse_for(image, &place.view, value)
                 .map_err(|e| Error::Value(format!("--set {}: {e}", place.name)))?;
             sets.push((place, v));
         }
@@ -137,7 +150,7 @@ impl Simulation {
                 let mut writes = Vec::new();
                 for (place, cell) in columns.iter().zip(&row.cells) {
                     let Some(text) = cell else { continue };
-                    let v = parse_for(&image, &place.view, text)
+                    let v = parse_for(image, &place.view, text)
                         .map_err(|e| err(row.line, format!("{}: {e}", place.name)))?;
                     writes.push((place.clone(), v));
                 }
@@ -168,8 +181,8 @@ impl Simulation {
         let tasks = plan.tasks.len();
         let task_of = task_of(&plan);
         let mut sim = Simulation {
-            image,
-            machine,
+            image: Arc::clone(&image_arc),
+            engine,
             plan,
             watch,
             sets,
@@ -188,7 +201,7 @@ impl Simulation {
 
     fn apply_sets(&mut self) -> Result<()> {
         for (place, v) in &self.sets {
-            if !write(&mut self.machine, place, v) {
+            if !write(&self.image, self.engine.as_mut(), place, v) {
                 return Err(Error::Value(format!(
                     "--set {}: the variable is outside the memory",
                     place.name
@@ -198,34 +211,23 @@ impl Simulation {
         Ok(())
     }
 
-    /// The same simulation before its first cycle (after `--set`).
-    pub fn restart(&self) -> Simulation {
-        let mut sim = Simulation {
-            image: Arc::clone(&self.image),
-            machine: Machine::new(Arc::clone(&self.image)),
-            plan: self.plan.clone(),
-            watch: self.watch.clone(),
-            sets: self.sets.clone(),
-            stimulus: self.stimulus.clone(),
-            next_input: 0,
-            single_prev: vec![false; self.plan.tasks.len()],
-            completed: 0,
-            max_steps: self.max_steps,
-            fired: vec![false; self.plan.tasks.len()],
-            order: Vec::new(),
-            task_of: self.task_of.clone(),
-        };
+    /// Back to the state before the first cycle (after `--set`).
+    pub fn restart(&mut self) {
+        self.engine.reset();
+        self.next_input = 0;
+        self.single_prev.fill(false);
+        self.completed = 0;
         // The same writes succeeded on the same fresh memory before.
-        let _ = sim.apply_sets();
-        sim
+        let _ = self.apply_sets();
     }
 
     pub fn plan(&self) -> &Plan {
         &self.plan
     }
 
-    pub fn machine(&self) -> &Machine {
-        &self.machine
+    /// The engine the program runs on.
+    pub fn engine(&self) -> &dyn Engine {
+        self.engine.as_ref()
     }
 
     /// The watched places, in report order.
@@ -253,7 +255,7 @@ impl Simulation {
                 break;
             }
             for (place, v) in &inputs.writes {
-                write(&mut self.machine, place, v);
+                write(&self.image, self.engine.as_mut(), place, v);
             }
             self.next_input += 1;
         }
@@ -261,9 +263,7 @@ impl Simulation {
         for (i, t) in self.plan.tasks.iter().enumerate() {
             self.fired[i] = false;
             if let Some(Source::Addr { offset, ty }) = &t.single {
-                let v = self
-                    .machine
-                    .read_value(*offset, *ty)
+                let v = read_value(self.engine.as_ref(), &self.image, *offset, *ty)
                     .and_then(|v| v.as_int())
                     .is_some_and(|i| i != 0);
                 self.fired[i] = v && !self.single_prev[i];
@@ -293,16 +293,16 @@ impl Simulation {
             let inst = &self.plan.instances[i];
             for (off, ty, Source::Addr { offset, ty: sty }) in &inst.inputs {
                 let dst = inst.offset.wrapping_add(*off);
-                copy(&self.image, &mut self.machine, *offset, *sty, dst, *ty)
+                copy(&self.image, self.engine.as_mut(), *offset, *sty, dst, *ty)
                     .map_err(|k| connection_fault(&self.image, inst.pou, k))?;
             }
-            let n = self.machine.run_program(inst, now, budget)?;
+            let n = self.engine.run_program(inst, now, budget)?;
             if let Some(t) = task {
                 used[t] += n;
             }
             for (off, ty, Source::Addr { offset, ty: dty }) in &inst.outputs {
                 let src = inst.offset.wrapping_add(*off);
-                copy(&self.image, &mut self.machine, src, *ty, *offset, *dty)
+                copy(&self.image, self.engine.as_mut(), src, *ty, *offset, *dty)
                     .map_err(|k| connection_fault(&self.image, inst.pou, k))?;
             }
         }
@@ -311,7 +311,7 @@ impl Simulation {
 
     /// The watched values now, as the report of the last completed cycle.
     pub fn report(&self) -> Report {
-        let mem = self.machine.memory();
+        let e = self.engine.as_ref();
         Report {
             cycle: self.completed,
             time_ns: if self.completed == 0 {
@@ -323,8 +323,8 @@ impl Simulation {
                 .watch
                 .iter()
                 .map(|p| {
-                    let v = match p.loc.address(mem) {
-                        Some(a) => read(&self.image, mem, a, &p.view),
+                    let v = match p.loc.address(e) {
+                        Some(a) => read(&self.image, e, a, &p.view),
                         None => crate::value::Shown::Unreadable,
                     };
                     (p.name.clone(), v)
@@ -359,18 +359,18 @@ fn writable(place: Place) -> Result<Place> {
 }
 
 /// Writes a value to a place; false when it is not in memory.
-fn write(machine: &mut Machine, place: &Place, v: &Value) -> bool {
-    let (Some(addr), View::Type(ty)) = (place.loc.address(machine.memory()), &place.view) else {
+fn write(image: &Image, engine: &mut dyn Engine, place: &Place, v: &Value) -> bool {
+    let (Some(addr), View::Type(ty)) = (place.loc.address(engine), &place.view) else {
         return false;
     };
-    machine.write_value(addr, *ty, v)
+    write_value(engine, image, addr, *ty, v)
 }
 
 /// Copies a connection: bytes when the types are the same, else the value
 /// converted (a program input INT from a SINT global).
 fn copy(
     image: &Image,
-    m: &mut Machine,
+    m: &mut dyn Engine,
     src: u32,
     src_ty: TypeRef,
     dst: u32,
@@ -386,19 +386,23 @@ fn copy(
         let n = image.type_size(src_ty).min(u32::MAX as u64) as u32;
         // Most connections are scalars: no allocation for them.
         let mut small = [0u8; 16];
-        if let Some(b) = m.read_bytes(src, n) {
+        if let Some(b) = m.bytes(src, n) {
             if b.len() <= small.len() {
                 small[..b.len()].copy_from_slice(b);
-                m.write_bytes(dst, &small[..n as usize]);
+                if let Some(d) = m.bytes_mut(dst, n) {
+                    d.copy_from_slice(&small[..n as usize]);
+                }
             } else {
                 let b = b.to_vec();
-                m.write_bytes(dst, &b);
+                if let Some(d) = m.bytes_mut(dst, n) {
+                    d.copy_from_slice(&b);
+                }
             }
         }
         return Ok(());
     }
     let elem = |t: TypeRef| image.scalar_of(t);
-    let Some(v) = m.read_value(src, src_ty) else {
+    let Some(v) = read_value(m, image, src, src_ty) else {
         return Ok(());
     };
     let v = match (elem(src_ty), elem(dst_ty)) {
@@ -407,7 +411,7 @@ fn copy(
         }
         _ => v,
     };
-    m.write_value(dst, dst_ty, &v);
+    write_value(m, image, dst, dst_ty, &v);
     Ok(())
 }
 
@@ -521,13 +525,13 @@ pub fn run(
             }
             Err(fault) => {
                 if !emitted_last {
-                    let mut replay = sim.restart();
+                    sim.restart();
                     for _ in 1..k {
-                        if replay.run_cycle().is_err() {
+                        if sim.run_cycle().is_err() {
                             break;
                         }
                     }
-                    emit(&replay.report());
+                    emit(&sim.report());
                 }
                 return Err(fault);
             }

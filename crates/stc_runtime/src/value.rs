@@ -12,8 +12,8 @@ use stc_syntax::literal::decode_string;
 use stc_syntax::token::ElemType;
 use stc_values::{parse_value, Value};
 use stc_vm::image::{Image, TypeDesc, TypeRef};
-use stc_vm::machine::{read_scalar, read_string};
 
+use crate::engine::{read_value, Memory};
 use crate::error::{Error, Result};
 use crate::path::{describe, is_member, View};
 
@@ -44,14 +44,14 @@ pub enum Shown {
 const MAX_DEPTH: u32 = 64;
 
 /// Reads what a place holds at `addr`.
-pub fn read(image: &Image, mem: &[u8], addr: u32, view: &View) -> Shown {
+pub fn read(image: &Image, mem: &dyn Memory, addr: u32, view: &View) -> Shown {
     match view {
         View::Type(t) => read_type(image, mem, addr, *t, 0),
         View::Slice { elem, dims, stride } => read_array(image, mem, addr, *elem, dims, *stride, 0),
     }
 }
 
-fn read_type(image: &Image, mem: &[u8], addr: u32, ty: TypeRef, depth: u32) -> Shown {
+fn read_type(image: &Image, mem: &dyn Memory, addr: u32, ty: TypeRef, depth: u32) -> Shown {
     if depth > MAX_DEPTH {
         return Shown::Unreadable;
     }
@@ -60,16 +60,16 @@ fn read_type(image: &Image, mem: &[u8], addr: u32, ty: TypeRef, depth: u32) -> S
     };
     match desc {
         TypeDesc::Scalar(e) | TypeDesc::Subrange { base: e, .. } => {
-            match read_scalar(mem, addr, *e) {
+            match read_value(mem, image, addr, ty) {
                 Some(v) => Shown::Scalar(*e, v),
                 None => Shown::Unreadable,
             }
         }
-        TypeDesc::String { wide, cap } => match read_string(mem, addr, *wide, *cap) {
+        TypeDesc::String { .. } => match read_value(mem, image, addr, ty) {
             Some(v) => Shown::Str(v),
             None => Shown::Unreadable,
         },
-        TypeDesc::Enum { name, base, values } => match read_scalar(mem, addr, *base) {
+        TypeDesc::Enum { name, values, .. } => match read_value(mem, image, addr, ty) {
             Some(Value::Int(v)) => Shown::Enum {
                 ty: name.clone(),
                 name: values.iter().find(|x| x.1 == v).map(|x| x.0.clone()),
@@ -103,10 +103,7 @@ fn read_type(image: &Image, mem: &[u8], addr: u32, ty: TypeRef, depth: u32) -> S
                     .map(|v| {
                         let mut a = addr.checked_add(v.offset);
                         if v.is_ref {
-                            a = a.and_then(|a| {
-                                let b = mem.get(a as usize..a as usize + 4)?;
-                                Some(u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
-                            });
+                            a = a.and_then(|a| mem.deref(a));
                         }
                         let shown = match a {
                             Some(a) => read_type(image, mem, a, v.ty, depth + 1),
@@ -122,7 +119,7 @@ fn read_type(image: &Image, mem: &[u8], addr: u32, ty: TypeRef, depth: u32) -> S
 
 fn read_array(
     image: &Image,
-    mem: &[u8],
+    mem: &dyn Memory,
     addr: u32,
     elem: TypeRef,
     dims: &[(i64, i64)],
@@ -138,9 +135,10 @@ fn read_array(
     for &(l, h) in dims {
         count = count.saturating_mul((h as i128 - l as i128 + 1).max(0) as u128);
     }
-    let end = (addr as u128).saturating_add(count.saturating_mul(stride.max(1) as u128));
-    if end > mem.len() as u128 {
-        return Shown::Unreadable;
+    let total = count.saturating_mul(stride.max(1) as u128);
+    match u32::try_from(total) {
+        Ok(n) if mem.bytes(addr, n).is_some() => {}
+        _ => return Shown::Unreadable,
     }
     let len = (hi as i128 - lo as i128 + 1).max(0) as u64;
     let row = (count / u128::from(len.max(1))) as u64 * stride as u64;

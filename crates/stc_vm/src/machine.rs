@@ -59,9 +59,24 @@ impl Machine {
         &self.image
     }
 
+    /// The image, shared.
+    pub fn image_arc(&self) -> &Arc<Image> {
+        &self.image
+    }
+
     /// The whole memory: data area, constants, stack.
     pub fn memory(&self) -> &[u8] {
         &self.mem
+    }
+
+    /// The whole memory, to write (the runtime's `--set` and stimuli).
+    pub fn memory_mut(&mut self) -> &mut [u8] {
+        &mut self.mem
+    }
+
+    /// Every variable back to its initial value, as [`Machine::new`] left it.
+    pub fn reset(&mut self) {
+        *self = Machine::new(Arc::clone(&self.image));
     }
 
     /// Runs the body of a program instance once, at task time `now_ns`,

@@ -12,10 +12,12 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use clap::{Args, ValueEnum};
+use stc_engine_c::{CEngine, Toolchain};
 use stc_runtime::path::split_list;
 use stc_runtime::realtime::{RealTime, WallClock};
+use stc_runtime::Engine;
 use stc_runtime::{Format, Report, Simulation, Stimulus, Unpaced, DEFAULT_MAX_STEPS};
-use stc_vm::Image;
+use stc_vm::Machine;
 
 use crate::cli::{Outcome, EXIT_ERRORS, EXIT_OK, EXIT_USAGE};
 use crate::driver::{self, Options};
@@ -66,6 +68,18 @@ pub struct RunArgs {
     /// Pace the cycles with the wall clock (stop with Ctrl-C).
     #[arg(long)]
     pub realtime: bool,
+    /// What runs the program: the bytecode VM, or the generated C built
+    /// with the system C compiler (`$CC`, else `cc`) and loaded.
+    #[arg(long, value_enum, default_value_t = Backend::Vm)]
+    pub backend: Backend,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Backend {
+    Vm,
+    Jit,
+    C,
+    Netlist,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -84,15 +98,25 @@ fn usage_error(msg: impl std::fmt::Display) -> Outcome {
 
 /// Runs `stc run`.
 pub fn run(opts: &Options, args: RunArgs) -> Outcome {
-    match load(&args.files, opts) {
-        Ok((image, diagnostics)) => setup_and_run(image, &args, diagnostics),
+    if matches!(args.backend, Backend::Jit | Backend::Netlist) {
+        return usage_error(format!(
+            "--backend {}: this back end is not implemented yet (vm and c are)",
+            format!("{:?}", args.backend).to_lowercase()
+        ));
+    }
+    match load(&args.files, opts, args.backend) {
+        Ok((engine, diagnostics)) => setup_and_run(engine, &args, diagnostics),
         Err(o) => o,
     }
 }
 
-/// The image to run, and the rendered diagnostics (warnings) of compiling
-/// it; `Err` is the outcome to return at once.
-fn load(files: &[PathBuf], opts: &Options) -> Result<(Image, String), Outcome> {
+/// The engine to run, and the rendered diagnostics (warnings) of compiling
+/// the program; `Err` is the outcome to return at once.
+fn load(
+    files: &[PathBuf],
+    opts: &Options,
+    backend: Backend,
+) -> Result<(Box<dyn Engine>, String), Outcome> {
     let is_stbc = |p: &Path| {
         p.extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("stbc"))
@@ -105,9 +129,14 @@ fn load(files: &[PathBuf], opts: &Options) -> Result<(Image, String), Outcome> {
         };
         let bytes = std::fs::read(file)
             .map_err(|e| usage_error(format!("cannot read {}: {e}", file.display())))?;
+        if backend != Backend::Vm {
+            return Err(usage_error(
+                "a .stbc file is bytecode: it runs on the VM (--backend vm)",
+            ));
+        }
         let image = stc_vm::format::decode(&bytes)
             .map_err(|e| usage_error(format!("cannot load {}: {e}", file.display())))?;
-        return Ok((image, String::new()));
+        return Ok((Box::new(Machine::new(Arc::new(image))), String::new()));
     }
     let (sm, diags) = sources::load(files).map_err(usage_error)?;
     let a = driver::analyse(sm, diags, opts);
@@ -120,9 +149,29 @@ fn load(files: &[PathBuf], opts: &Options) -> Result<(Image, String), Outcome> {
             ..Outcome::default()
         });
     }
-    let module = driver::lower(a);
+    let (module, sources) = driver::lower_keeping_sources(a);
+    if backend == Backend::C {
+        let locate = |sp: stc_diagnostics::Span| {
+            sources
+                .locate(sp.lo)
+                .map(|(f, lc)| (f.name.clone(), lc.line, lc.col))
+        };
+        return match CEngine::build(&module, &locate, &Toolchain::default()) {
+            Ok(engine) => Ok((Box::new(engine), rendered)),
+            Err(e @ stc_engine_c::Error::Generate(_)) => Err(Outcome {
+                stderr: format!("{rendered}{e}\n"),
+                status: EXIT_ERRORS,
+                ..Outcome::default()
+            }),
+            Err(e) => Err(Outcome {
+                stderr: format!("{rendered}{e}\n"),
+                status: EXIT_USAGE,
+                ..Outcome::default()
+            }),
+        };
+    }
     match stc_vm::compile(&module) {
-        Ok(image) => Ok((image, rendered)),
+        Ok(image) => Ok((Box::new(Machine::new(Arc::new(image))), rendered)),
         Err(e) => Err(Outcome {
             stderr: format!("{rendered}error: cannot compile for the VM: {e}\n"),
             status: EXIT_ERRORS,
@@ -131,8 +180,8 @@ fn load(files: &[PathBuf], opts: &Options) -> Result<(Image, String), Outcome> {
     }
 }
 
-/// Runs an image; `diagnostics` (warnings) come first on stderr.
-fn setup_and_run(image: Image, args: &RunArgs, diagnostics: String) -> Outcome {
+/// Runs an engine; `diagnostics` (warnings) come first on stderr.
+fn setup_and_run(image: Box<dyn Engine>, args: &RunArgs, diagnostics: String) -> Outcome {
     if args.realtime {
         // Reports stream from the first cycle on: the warnings go first.
         if let Some(mut e) = console::stderr() {
@@ -145,7 +194,7 @@ fn setup_and_run(image: Image, args: &RunArgs, diagnostics: String) -> Outcome {
     o
 }
 
-fn configure_and_run(image: Image, args: &RunArgs) -> Outcome {
+fn configure_and_run(image: Box<dyn Engine>, args: &RunArgs) -> Outcome {
     let stimulus = match &args.stimulus {
         None => None,
         Some(path) => {
@@ -180,7 +229,7 @@ fn configure_and_run(image: Image, args: &RunArgs) -> Outcome {
             .then(|| args.watch.iter().flat_map(|w| split_list(w)).collect()),
         max_steps: args.max_steps,
     };
-    let mut sim = match Simulation::new(Arc::new(image), &options, stimulus.as_ref()) {
+    let mut sim = match Simulation::with_engine(image, &options, stimulus.as_ref()) {
         Ok(s) => s,
         Err(e) => return usage_error(e),
     };

@@ -146,13 +146,7 @@ pub fn read_value(mem: &dyn Memory, image: &Image, addr: u32, ty: TypeRef) -> Op
 
 /// Writes a scalar or string value (strings truncated to their capacity;
 /// integers keep their low bits: the caller has converted the value).
-pub fn write_value(
-    mem: &mut dyn Memory,
-    image: &Image,
-    addr: u32,
-    ty: TypeRef,
-    v: &Value,
-) -> bool {
+pub fn write_value(mem: &mut dyn Memory, image: &Image, addr: u32, ty: TypeRef, v: &Value) -> bool {
     let Some(size) = value_size(image, ty) else {
         return false;
     };
@@ -167,7 +161,6 @@ pub fn write_value(
         _ => false,
     }
 }
-
 
 impl Memory for Vec<u8> {
     fn bytes(&self, addr: u32, len: u32) -> Option<&[u8]> {

@@ -1,7 +1,8 @@
 /*
- * stc_meta.h - descriptor tables of a generated program, read by the
- * simulation harness (stc_sim.c) to resolve variable paths, read and write
- * values, schedule tasks and report, exactly as `stc run` does.
+ * stc_meta.h - descriptor tables of a generated program: the program model
+ * with C addresses. The real-time harness (stc_rt_main.c) schedules tasks
+ * from them; `stc run --backend c` (crates/stc_engine_c) reads them from
+ * the program built as a shared library and runs it with stc's runtime.
  *
  * The tables mirror the VM image's tables (crates/stc_vm/src/image.rs), with
  * C addresses instead of VM offsets: an offset here is a byte offset from the

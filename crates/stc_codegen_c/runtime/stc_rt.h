@@ -1461,17 +1461,11 @@ void stc_split_date(int64_t date, int64_t out[3], uint32_t site);
 void stc_split_tod(int64_t tod, int64_t out[4]);
 void stc_split_dt(int64_t dt, int64_t out[7], uint32_t site);
 
-/* ---- for the simulation harness --------------------------------------- */
+/* ---- for the real-time harness ----------------------------------------- */
 
 /* stc_values::convert between two elementary types (enum stc_elem codes,
    neither STRING nor WSTRING); src and dst hold values as stc_meta.h says.
    Returns 0, or the fault kind (dst is then unchanged). */
 uint32_t stc_convert_scalar(uint8_t from_elem, const void *src, uint8_t to_elem, void *dst);
-
-/* stc_values::parse_value of the UTF-8 text[0..len) into a value of type
-   `elem`; for STRING/WSTRING dst is the length-prefixed array and cap its
-   capacity (the text is truncated to it). Returns 0 or
-   STC_FAULT_CONVERSION (dst is then unchanged). */
-uint32_t stc_parse_value(uint8_t elem, const char *text, size_t len, void *dst, uint32_t cap);
 
 #endif

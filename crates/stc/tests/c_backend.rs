@@ -382,3 +382,81 @@ fn process_image_arrays_reach_the_field() {
     assert_eq!(rt.status.code(), Some(3), "{stderr}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `stc run --backend ...` outside the happy path: each mistake is one
+/// message and an exit status of the contract, never a crash.
+#[test]
+fn backend_choices_and_failures_are_reported() {
+    let (dir, f) = scratch(
+        "backend",
+        "PROGRAM P\nVAR_OUTPUT n : INT; END_VAR\nn := n + 1;\nEND_PROGRAM\n",
+    );
+    let stc = |args: &[&str], cc: &str| {
+        Command::new(env!("CARGO_BIN_EXE_stc"))
+            .args(args)
+            .env("CC", cc)
+            .env_remove("STC_CFLAGS")
+            .output()
+            .unwrap()
+    };
+    // The C engine runs and prints what the VM prints.
+    let c = stc(&["run", &f, "--cycles", "3", "--backend", "c"], "gcc");
+    let vm = stc(&["run", &f, "--cycles", "3"], "gcc");
+    assert_eq!(c.status.code(), Some(0), "{c:?}");
+    assert_eq!(c.stdout, vm.stdout);
+    assert_eq!(
+        String::from_utf8_lossy(&c.stdout),
+        "cycle 3 (T#20ms)\n  P.n = 3\n"
+    );
+    // Back ends that do not exist yet.
+    for b in ["jit", "netlist"] {
+        let o = stc(&["run", &f, "--backend", b], "gcc");
+        assert_eq!(o.status.code(), Some(2), "{o:?}");
+        assert!(String::from_utf8_lossy(&o.stderr).contains(&format!(
+            "--backend {b}: this back end is not implemented yet"
+        )));
+    }
+    // No C compiler: a usage error that says what to do.
+    let o = stc(&["run", &f, "--backend", "c"], "/nonexistent/cc");
+    assert_eq!(o.status.code(), Some(2), "{o:?}");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("cannot run the C compiler `/nonexistent/cc`") && err.contains("set CC"),
+        "{err}"
+    );
+    // A compiler that fails.
+    let o = stc(&["run", &f, "--backend", "c"], "false");
+    assert_eq!(o.status.code(), Some(2), "{o:?}");
+    assert!(String::from_utf8_lossy(&o.stderr).contains("`false` failed on"));
+    // Bytecode runs on the VM only.
+    let stbc = dir.join("p.stbc");
+    let b = stc(
+        &[
+            "build",
+            &f,
+            "--emit",
+            "bytecode",
+            "-o",
+            &stbc.display().to_string(),
+        ],
+        "gcc",
+    );
+    assert_eq!(b.status.code(), Some(0));
+    let o = stc(
+        &["run", &stbc.display().to_string(), "--backend", "c"],
+        "gcc",
+    );
+    assert_eq!(o.status.code(), Some(2), "{o:?}");
+    assert!(String::from_utf8_lossy(&o.stderr).contains("runs on the VM"));
+    // A program the C back end does not translate: exit 1, with its place.
+    let (dir2, g) = scratch(
+        "backend_unsupported",
+        "PROGRAM P\nVAR r AT %MD4 : REAL;\n  d AT %MD4 : DWORD; END_VAR\nr := 1.5;\nd := d OR 1;\nEND_PROGRAM\n",
+    );
+    let o = stc(&["run", &g, "--backend", "c"], "gcc");
+    assert_eq!(o.status.code(), Some(1), "{o:?}");
+    assert!(String::from_utf8_lossy(&o.stderr)
+        .contains(":3:3: error: the C back end does not translate variables of different types"));
+    let _ = std::fs::remove_dir_all(&dir);
+    let _ = std::fs::remove_dir_all(&dir2);
+}

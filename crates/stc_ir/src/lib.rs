@@ -28,6 +28,12 @@
 //! Types are the analyser's [`TypeTable`], so reports can print enumeration
 //! names and struct members; [`layout`] decides the memory layout of every
 //! type for back ends that need bytes (the VM, the process image).
+//!
+//! What back ends would otherwise each compute from a body is computed here
+//! once, on the IR: [`visit`] walks bodies (calls, places, the variables
+//! used, whether an expression calls), and [`faults`] decides which POUs
+//! may raise a run-time fault (so a back end can leave out the check after
+//! a call that cannot fault).
 
 pub mod dump;
 pub mod faults;

@@ -51,9 +51,6 @@ enum MetaKey {
     Pou(usize),
 }
 
-/// Marks the check after a call until the callee is known to fault or not.
-const CALL_CHECK: &str = "@CALLCHECK ";
-
 /// Finds the file, line and column of a span.
 pub type Locate<'a> = &'a dyn Fn(stc_diagnostics::Span) -> Option<(String, u32, u32)>;
 
@@ -76,8 +73,8 @@ struct Gen<'a> {
     consts: FxHashMap<(bool, Vec<u16>), String>,
     protos: String,
     bodies: String,
-    /// The body functions, by POU, until the checks after calls are known.
-    pou_bodies: Vec<(usize, String)>,
+    /// Per POU: whether running it may raise a fault (`stc_ir::faults`).
+    may_fault: Vec<bool>,
     sites: Vec<(String, String, u32, u32)>,
     site_map: FxHashMap<(usize, u32, u32), u32>,
     meta_types: Vec<String>,
@@ -123,7 +120,7 @@ pub fn program(m: &Module, locate: Locate<'_>) -> Result<Program, Error> {
         consts: FxHashMap::default(),
         protos: String::new(),
         bodies: String::new(),
-        pou_bodies: Vec::new(),
+        may_fault: stc_ir::faults::may_fault(m),
         sites: Vec::new(),
         site_map: FxHashMap::default(),
         meta_types: Vec::new(),
@@ -167,7 +164,6 @@ impl<'a> Gen<'a> {
                 self.pou_body(p)?;
             }
         }
-        self.resolve_call_checks();
         for &p in &used {
             if m.pous[p].kind != PouKind::Function {
                 self.init_fn(p)?;
@@ -356,7 +352,7 @@ impl<'a> Gen<'a> {
         self.io_types
             .get(a)
             .copied()
-            .unwrap_or_else(|| addr_type(self.m, a))
+            .unwrap_or_else(|| self.m.addr_type(a))
     }
 
     /// The slot of an address as an lvalue of type `want`: itself, or seen
@@ -467,12 +463,7 @@ impl<'a> Gen<'a> {
         // values at each call (its inputs and in-outs are set by the caller);
         // an FB's or program's VAR_TEMP likewise.
         for (i, v) in pou.vars.iter().enumerate() {
-            let frame = if function {
-                !matches!(v.section, Section::Input | Section::InOut) && v.storage != Storage::Ref
-            } else {
-                v.storage == Storage::Frame
-            };
-            if !frame {
+            if !in_frame(function, v) {
                 continue;
             }
             let name = names::var_name(m, i, v);
@@ -502,7 +493,7 @@ impl<'a> Gen<'a> {
         // An empty body (or one that touches no variable) still takes its
         // instance or frame: say it is unused on purpose (-Wunused-parameter).
         let param = if function { "f" } else { "self" };
-        if !self.f.body.iter().any(|l| uses_ident(l, param)) {
+        if !self.body_uses_param(p) {
             let _ = writeln!(out, "    (void){param};");
         }
         for l in &self.f.body {
@@ -510,62 +501,18 @@ impl<'a> Gen<'a> {
             out.push('\n');
         }
         out.push_str("}\n\n");
-        self.pou_bodies.push((p, out));
+        self.bodies.push_str(&out);
         Ok(())
     }
 
-    /// The check after each call: the full fault check when the callee can
-    /// fault (directly, or through its own calls), else only the watchdog's
-    /// (which costs nothing without STC_WATCHDOG).
-    fn resolve_call_checks(&mut self) {
-        let n = self.m.pous.len();
-        let mut direct = vec![false; n];
-        let mut calls: Vec<Vec<usize>> = vec![Vec::new(); n];
-        for (p, text) in &self.pou_bodies {
-            direct[*p] = text.contains("if (stc_fault_kind != 0U)") || text.contains("stc_fault(");
-            for part in text.split(CALL_CHECK).skip(1) {
-                if let Some(q) = part.split('@').next().and_then(|x| x.parse::<usize>().ok()) {
-                    calls[*p].push(q);
-                }
-            }
-        }
-        let mut faults = direct;
-        loop {
-            let mut changed = false;
-            for p in 0..n {
-                if !faults[p]
-                    && calls[p]
-                        .iter()
-                        .any(|&q| faults.get(q).copied().unwrap_or(true))
-                {
-                    faults[p] = true;
-                    changed = true;
-                }
-            }
-            if !changed {
-                break;
-            }
-        }
-        for (_, text) in &mut self.pou_bodies {
-            let mut out = String::with_capacity(text.len());
-            let mut rest = text.as_str();
-            while let Some(i) = rest.find(CALL_CHECK) {
-                out.push_str(&rest[..i]);
-                let after = &rest[i + CALL_CHECK.len()..];
-                let (num, tail) = after.split_once('@').unwrap_or(("", after));
-                let q = num.parse::<usize>().ok();
-                if q.and_then(|q| faults.get(q).copied()).unwrap_or(true) {
-                    out.push_str("if (stc_fault_kind != 0U) { return; }");
-                } else {
-                    out.push_str("if (stc_watchdog_tripped() != 0U) { return; }");
-                }
-                rest = tail;
-            }
-            out.push_str(rest);
-            *text = out;
-        }
-        for (_, text) in std::mem::take(&mut self.pou_bodies) {
-            self.bodies.push_str(&text);
+    /// The check after a call of POU `p`: the full fault check when it may
+    /// fault (directly, or through its own calls), else only the
+    /// watchdog's (which costs nothing without STC_WATCHDOG).
+    fn call_check(&mut self, p: usize) {
+        if self.may_fault.get(p).copied().unwrap_or(true) {
+            self.fault_return();
+        } else {
+            self.line("if (stc_watchdog_tripped() != 0U) { return; }".into());
         }
     }
 
@@ -597,7 +544,7 @@ impl<'a> Gen<'a> {
 
     fn block(&mut self, stmts: &[Stmt]) -> Result<(), Error> {
         for (k, s) in stmts.iter().enumerate() {
-            let range = for_range(&stmts[..k], s, &self.m.pous[self.f.pou]);
+            let range = stc_ir::faults::for_range(&stmts[..k], s, &self.m.pous[self.f.pou]);
             if let Some(r) = range {
                 self.f.ranges.push(r);
             }
@@ -607,26 +554,6 @@ impl<'a> Gen<'a> {
             }
         }
         Ok(())
-    }
-
-    /// The range of a variable in the code being generated, when it is the
-    /// control variable of an enclosing FOR with constant bounds.
-    fn range_of(&self, e: &Expr) -> Option<(i128, i128)> {
-        let ExprKind::Load(p) = &e.kind else {
-            return None;
-        };
-        let Root::Var(v) = p.root else {
-            return None;
-        };
-        if !p.proj.is_empty() {
-            return None;
-        }
-        self.f
-            .ranges
-            .iter()
-            .rev()
-            .find(|(x, _, _)| *x == v)
-            .map(|&(_, l, h)| (l, h))
     }
 
     fn stmt(&mut self, s: &Stmt) -> Result<(), Error> {
@@ -799,16 +726,14 @@ impl<'a> Gen<'a> {
     /// harness.
     fn const_table(&mut self, v: VarId) -> Option<String> {
         let m = self.m;
-        let var = m.pous[self.f.pou].var(v);
-        if !var.constant || var.storage == Storage::Ref {
+        if !self.is_const_table(self.f.pou, v) {
             return None;
         }
+        let var = m.pous[self.f.pou].var(v);
         let TypeKind::Array { dims, elem } = m.types.kind(var.ty) else {
             return None;
         };
-        let e = self
-            .scalar(*elem)
-            .filter(|e| !matches!(e, ElemType::String | ElemType::Wstring))?;
+        let e = self.scalar(*elem)?;
         let name = format!("KC{}_{}", self.f.pou, v.0);
         if !self.const_tables.contains(&name) {
             let n = array_count(dims) as usize;
@@ -842,6 +767,75 @@ impl<'a> Gen<'a> {
         Some(name)
     }
 
+    /// Whether variable `v` of POU `p` is read from a `static const` table
+    /// ([`Gen::const_table`]): a CONSTANT array of elementary values (not
+    /// strings) held directly, every initial value given a scalar.
+    fn is_const_table(&self, p: usize, v: VarId) -> bool {
+        let m = self.m;
+        let var = m.pous[p].var(v);
+        if !var.constant || var.storage == Storage::Ref {
+            return false;
+        }
+        let TypeKind::Array { elem, .. } = m.types.kind(var.ty) else {
+            return false;
+        };
+        let elementary = self
+            .scalar(*elem)
+            .is_some_and(|e| !matches!(e, ElemType::String | ElemType::Wstring));
+        let scalars = match &var.init {
+            Some(InitValue::Array(l)) => l
+                .iter()
+                .all(|x| matches!(x, None | Some(InitValue::Scalar(_)))),
+            _ => true,
+        };
+        elementary && scalars
+    }
+
+    /// Whether [`Gen::init_value`] writes anything for a value of type `t`
+    /// (not for an empty struct or an erroneous type).
+    fn init_writes(&self, t: TypeId) -> bool {
+        match self.m.types.kind(t) {
+            TypeKind::Array { elem, .. } => self.init_writes(*elem),
+            TypeKind::Struct { fields } => fields.iter().any(|f| self.init_writes(f.ty)),
+            TypeKind::Error | TypeKind::Void => false,
+            TypeKind::Elem(_)
+            | TypeKind::String { .. }
+            | TypeKind::Subrange { .. }
+            | TypeKind::Enum { .. }
+            | TypeKind::Fb(_)
+            | TypeKind::Program(_) => true,
+        }
+    }
+
+    /// Whether the body function of POU `p` refers to its parameter (`f`,
+    /// a function's frame; `self`, an FB's or program's instance): a
+    /// function sets its locals, outputs and result in the frame on entry,
+    /// and a body names its variables there, except VAR_TEMPs of an FB or
+    /// program (locals of the C function) and CONSTANT arrays read from
+    /// their tables. Decided on the IR (`stc_ir::visit::used_vars`).
+    fn body_uses_param(&self, p: usize) -> bool {
+        let pou = &self.m.pous[p];
+        let function = pou.kind == PouKind::Function;
+        let used = stc_ir::visit::used_vars(&pou.body, pou.vars.len());
+        pou.vars.iter().enumerate().any(|(i, v)| {
+            let set_on_entry = function && in_frame(function, v) && self.init_writes(v.ty);
+            let named = used[i]
+                && (function || v.storage != Storage::Frame)
+                && !self.is_const_table(p, VarId(i as u32));
+            set_on_entry || named
+        })
+    }
+
+    /// Whether the initialiser of FB or program `p` refers to its instance:
+    /// when it has a variable of the instance to set or bind.
+    fn init_uses_self(&self, p: usize) -> bool {
+        self.m.pous[p].vars.iter().any(|v| match v.storage {
+            Storage::Frame => false,
+            Storage::Ref => true,
+            Storage::Instance => self.init_writes(v.ty),
+        })
+    }
+
     /// The C lvalue of a place, with its index checks emitted (or, with
     /// `defer`, returned to be emitted later). A bit part is not applied
     /// here (see [`Gen::load_place`] and [`Gen::store_place`]).
@@ -856,7 +850,7 @@ impl<'a> Gen<'a> {
                 m.pous[self.f.pou].var(*v).ty,
             ),
             Root::Global(g) => (global_lvalue(m, g.0 as usize), m.globals[g.0 as usize].ty),
-            Root::Direct(a) => (self.io_access(a, addr_type(m, a))?, addr_type(m, a)),
+            Root::Direct(a) => (self.io_access(a, m.addr_type(a))?, m.addr_type(a)),
         };
         let mut deferred = defer;
         // The bound checks of every index of the place come after all its
@@ -903,7 +897,7 @@ impl<'a> Gen<'a> {
                     // induction).
                     let unchecked = |g: &Self, e: &stc_ir::Expr, lo: i128, hi: i128| {
                         matches!(e.kind, ExprKind::Const(Value::Int(_)))
-                            || g.range_of(e).is_some_and(|(l, h)| lo <= l && h <= hi)
+                            || stc_ir::faults::index_in_range(e, &g.f.ranges, lo, hi)
                     };
                     let signed = idx.iter().all(|(e, lo, hi)| unchecked(self, e, *lo, *hi));
                     let mut flat = Vec::new();
@@ -920,9 +914,9 @@ impl<'a> Gen<'a> {
                             });
                             continue;
                         }
-                        let known = self.range_of(e).filter(|&(l, h)| *lo <= l && h <= *hi);
+                        let known = stc_ir::faults::index_in_range(e, &self.f.ranges, *lo, *hi);
                         let i = self.expr(e)?;
-                        if known.is_some() && signed {
+                        if known && signed {
                             let k_t = self.new_temp("int64_t".into());
                             checks.push(format!("{k_t} = (int64_t){i} - INT64_C({lo});"));
                             flat.push(if mult == 1 {
@@ -934,7 +928,7 @@ impl<'a> Gen<'a> {
                         }
                         let k_t = self.new_temp("uint32_t".into());
                         let site = self.f.site;
-                        if known.is_some() {
+                        if known {
                             checks
                                 .push(format!("{k_t} = (uint32_t)((int64_t){i} - INT64_C({lo}));"));
                             flat.push(if mult == 1 {
@@ -1003,7 +997,7 @@ impl<'a> Gen<'a> {
         let mut ty = match &p.root {
             Root::Var(v) => m.pous[self.f.pou].var(*v).ty,
             Root::Global(g) => m.globals[g.0 as usize].ty,
-            Root::Direct(a) => addr_type(m, a),
+            Root::Direct(a) => m.addr_type(a),
         };
         for proj in &p.proj {
             ty = match proj {
@@ -1071,7 +1065,7 @@ impl<'a> Gen<'a> {
     fn assign(&mut self, place: &Place, value: &Expr) -> Result<(), Error> {
         // As the VM: with a value that calls nothing, the element of a
         // one-dimensional array is checked after the value is computed.
-        let lazy = !has_call(value) && single_index(place);
+        let lazy = !stc_ir::visit::has_call(value) && single_index(place);
         if lazy {
             let mut checks = Vec::new();
             let lv = self.place(place, Some(&mut checks))?;
@@ -1284,7 +1278,7 @@ impl<'a> Gen<'a> {
             ));
         }
         self.line(format!("{}(&{fr});", names::body_name(m, p)));
-        self.line(format!("{CALL_CHECK}{p}@"));
+        self.call_check(p);
         for o in outputs {
             let var = callee.var(o.var);
             let src = format!("{fr}.{}", names::var_name(m, o.var.0 as usize, var));
@@ -1362,7 +1356,7 @@ impl<'a> Gen<'a> {
             ));
         }
         self.line(format!("{}({ptr});", names::body_name(m, p)));
-        self.line(format!("{CALL_CHECK}{p}@"));
+        self.call_check(p);
         for o in outputs {
             let var = fbp.var(o.var);
             let name = names::var_name(m, o.var.0 as usize, var);
@@ -1582,7 +1576,7 @@ impl<'a> Gen<'a> {
             let _ = writeln!(out, "    {d}");
         }
         // An instance with nothing to set (an empty FB) still takes it.
-        if !self.f.body.iter().any(|l| uses_ident(l, "self")) {
+        if !self.init_uses_self(p) {
             out.push_str("    (void)self;\n");
         }
         for l in &self.f.body {
@@ -2332,6 +2326,18 @@ impl Emit for Gen<'_> {
     }
 }
 
+/// Whether a variable of a POU lives in the frame of its body function
+/// and is set to its initial value there on entry: a function's
+/// variables but its inputs and references (set by the caller), an FB's or
+/// program's VAR_TEMPs.
+fn in_frame(function: bool, v: &stc_ir::Var) -> bool {
+    if function {
+        !matches!(v.section, Section::Input | Section::InOut) && v.storage != Storage::Ref
+    } else {
+        v.storage == Storage::Frame
+    }
+}
+
 fn var_kind(s: Section) -> &'static str {
     match s {
         Section::Input => "STC_VK_INPUT",
@@ -2431,33 +2437,6 @@ fn global_lvalue(m: &Module, g: usize) -> String {
     }
 }
 
-fn addr_elem(a: &DirectAddress) -> ElemType {
-    match a.size {
-        AddrSize::Bit => ElemType::Bool,
-        AddrSize::Byte => ElemType::Byte,
-        AddrSize::Word => ElemType::Word,
-        AddrSize::Dword => ElemType::Dword,
-        AddrSize::Lword => ElemType::Lword,
-    }
-}
-
-fn addr_type(m: &Module, a: &DirectAddress) -> TypeId {
-    m.types_elem(addr_elem(a))
-}
-
-/// The POUs a program uses: every PROGRAM, and what their variables,
-/// the globals and their bodies need (instances and calls), transitively.
-/// Whether `text` mentions the C identifier `id` (not as part of a longer
-/// identifier).
-fn uses_ident(text: &str, id: &str) -> bool {
-    let word = |c: char| c.is_ascii_alphanumeric() || c == '_';
-    text.match_indices(id).any(|(i, _)| {
-        let before = text[..i].chars().next_back();
-        let after = text[i + id.len()..].chars().next();
-        !before.is_some_and(word) && !after.is_some_and(word)
-    })
-}
-
 /// The POUs whose body runs: programs (the harness calls them) and every
 /// POU a used POU calls. A function block used only as the type of an
 /// instance that is never called needs its struct and init function, not
@@ -2476,6 +2455,8 @@ fn called_pous(m: &Module, used: &[bool]) -> Vec<bool> {
     called
 }
 
+/// The POUs a program uses: every PROGRAM, and what their variables,
+/// the globals and their bodies need (instances and calls), transitively.
 fn used_pous(m: &Module) -> Vec<bool> {
     let mut used = vec![false; m.pous.len()];
     let mut work: Vec<usize> = (0..m.pous.len())
@@ -2512,71 +2493,6 @@ fn used_pous(m: &Module) -> Vec<bool> {
         stc_ir::visit::calls(&pou.body, &mut |c| work.push(c.0 as usize));
     }
     used
-}
-
-/// When `s` is the loop of a FOR with constant bounds (the IR sets the
-/// control variable and the hidden end just before it, and the body starts
-/// with the exit test), the control variable and its range in the body:
-/// the body cannot assign it (E0306).
-fn for_range(before: &[Stmt], s: &Stmt, pou: &stc_ir::Pou) -> Option<(VarId, i128, i128)> {
-    let StmtKind::Loop { body, .. } = &s.kind else {
-        return None;
-    };
-    let StmtKind::If { cond, .. } = &body.first()?.kind else {
-        return None;
-    };
-    let ExprKind::Binary(op, a, b) = &cond.kind else {
-        return None;
-    };
-    let (ExprKind::Load(pv), ExprKind::Load(pe)) = (&a.kind, &b.kind) else {
-        return None;
-    };
-    let (Root::Var(v), Root::Var(end)) = (&pv.root, &pe.root) else {
-        return None;
-    };
-    if pou.var(*end).hidden != Some("end") {
-        return None;
-    }
-    let konst = |target: VarId| {
-        before
-            .iter()
-            .rev()
-            .find_map(|st| match &st.kind {
-                StmtKind::Assign { place, value }
-                    if matches!(place.root, Root::Var(x) if x == target)
-                        && place.proj.is_empty() =>
-                {
-                    match &value.kind {
-                        ExprKind::Const(Value::Int(c)) => Some(Some(*c)),
-                        _ => Some(None),
-                    }
-                }
-                _ => None,
-            })
-            .flatten()
-    };
-    let (start, stop) = (konst(*v)?, konst(*end)?);
-    match op {
-        stc_values::BinOp::Gt => Some((*v, start, stop)),
-        stc_values::BinOp::Lt => Some((*v, stop, start)),
-        _ => None,
-    }
-}
-
-/// Whether an expression calls a function (which could change variables).
-fn has_call(e: &Expr) -> bool {
-    match &e.kind {
-        ExprKind::CallFn { .. } => true,
-        ExprKind::Const(_) | ExprKind::CurTime => false,
-        ExprKind::Load(p) => p.proj.iter().any(|pr| match pr {
-            Proj::Index(idx) => idx.iter().any(|(e, _, _)| has_call(e)),
-            _ => false,
-        }),
-        ExprKind::Unary(_, x) | ExprKind::Convert(x) => has_call(x),
-        ExprKind::Check { value, .. } => has_call(value),
-        ExprKind::Binary(_, x, y) => has_call(x) || has_call(y),
-        ExprKind::Intrinsic { args, .. } => args.iter().any(has_call),
-    }
 }
 
 /// Whether the VM checks this place's element after the value: a variable

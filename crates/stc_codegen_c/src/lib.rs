@@ -21,7 +21,11 @@
 //!   is the IR's, and each operation that can fault is followed by a check
 //!   that ends the POU (`if (stc_fault_kind != 0U) { return; }`): a fault
 //!   stops the cycle at the same point as on the VM, with no `longjmp`
-//!   (MISRA rule 21.4) and no undefined behaviour.
+//!   (MISRA rule 21.4) and no undefined behaviour. A call is followed by
+//!   that check only when the callee may fault (`stc_ir::faults`), else by
+//!   the watchdog's. What the generator decides (checks after calls, an
+//!   unused instance or frame parameter) it decides on the IR, never by
+//!   reading the C it wrote.
 //! - Names are mangled by kind (`T_` types, `FB_` instance structs, `F_`
 //!   function frames, `P_` bodies, `v_` variables, `h_` hidden variables),
 //!   so no ST name can collide with a C keyword, a library name, a macro or

@@ -28,8 +28,15 @@
 //! Types are the analyser's [`TypeTable`], so reports can print enumeration
 //! names and struct members; [`layout`] decides the memory layout of every
 //! type for back ends that need bytes (the VM, the process image).
+//!
+//! What back ends would otherwise each compute from a body is computed here
+//! once, on the IR: [`visit`] walks bodies (calls, places, the variables
+//! used, whether an expression calls), and [`faults`] decides which POUs
+//! may raise a run-time fault (so a back end can leave out the check after
+//! a call that cannot fault).
 
 pub mod dump;
+pub mod faults;
 pub mod layout;
 mod lower;
 pub mod visit;
@@ -42,6 +49,23 @@ use stc_syntax::Symbol;
 use stc_values::{BinOp, Intrinsic, UnOp, Value};
 
 pub use lower::lower;
+
+/// The module of a program without errors (no prelude), for unit tests.
+#[cfg(test)]
+pub(crate) fn test_module(src: &str) -> Module {
+    let mut sm = stc_diagnostics::SourceMap::new();
+    sm.add("t.st", src.to_string()).expect("small source");
+    let mut interner = stc_syntax::Interner::new();
+    let (ast, diags) = stc_syntax::parse_project(&sm, &mut interner);
+    assert!(diags.is_empty(), "{diags:?}");
+    let a = stc_sema::analyze(&ast, &mut interner, &sm, None, Default::default());
+    let errors = a
+        .diagnostics
+        .iter()
+        .any(|d| d.severity == stc_diagnostics::Severity::Error);
+    assert!(!errors, "{:?}", a.diagnostics);
+    lower(&ast, a, &interner, &sm)
+}
 
 /// A whole program ready for a back end.
 pub struct Module {
@@ -143,6 +167,19 @@ impl Module {
             .position(|&x| x == e)
             .unwrap_or(0);
         TypeId(2 + i as u32)
+    }
+
+    /// The type a direct address has when no declared variable gives it
+    /// one: BOOL for a bit, BYTE..LWORD by its size.
+    pub fn addr_type(&self, a: &DirectAddress) -> TypeId {
+        use stc_syntax::token::ElemType;
+        self.types_elem(match a.size {
+            AddrSize::Bit => ElemType::Bool,
+            AddrSize::Byte => ElemType::Byte,
+            AddrSize::Word => ElemType::Word,
+            AddrSize::Dword => ElemType::Dword,
+            AddrSize::Lword => ElemType::Lword,
+        })
     }
 
     pub fn types_bool(&self) -> TypeId {

@@ -1,11 +1,12 @@
 //! Walks over IR bodies that every back end needs: the calls a body makes
-//! (to order or select POUs) and the places it names (to find the process
-//! image). One definition, so no back end misses a corner (a call inside
-//! the index of an assignment target, an output target, an in-out).
+//! (to order or select POUs), the places it names (to find the process
+//! image), the variables it uses, whether an expression calls a function.
+//! One definition, so no back end misses a corner (a call inside the index
+//! of an assignment target, an output target, an in-out).
 
-use stc_sema::PouId;
+use stc_sema::{PouId, VarId};
 
-use crate::{Expr, ExprKind, Place, Proj, Stmt, StmtKind};
+use crate::{Expr, ExprKind, Place, Proj, Root, Stmt, StmtKind};
 
 /// Every expression of a body, in evaluation order, including those inside
 /// places (indices) and nested calls, and every place named.
@@ -139,4 +140,78 @@ pub fn calls(stmts: &[Stmt], f: &mut dyn FnMut(PouId)) {
 /// Every place a body names (roots of direct addresses included).
 pub fn places(stmts: &[Stmt], f: &mut dyn FnMut(&Place)) {
     walk(stmts, &mut |_| {}, f);
+}
+
+/// For each of the `n` variables of the POU whose body this is, whether the
+/// body uses it (reads or writes it, as a whole or in part, binds it to an
+/// in-out or calls it as an instance).
+pub fn used_vars(stmts: &[Stmt], n: usize) -> Vec<bool> {
+    let mut used = vec![false; n];
+    places(stmts, &mut |p| {
+        if let Root::Var(VarId(v)) = p.root {
+            if let Some(u) = used.get_mut(v as usize) {
+                *u = true;
+            }
+        }
+    });
+    used
+}
+
+/// Whether evaluating an expression calls a function (which could change
+/// variables), in an index of a place it reads included.
+pub fn has_call(e: &Expr) -> bool {
+    match &e.kind {
+        ExprKind::CallFn { .. } => true,
+        ExprKind::Const(_) | ExprKind::CurTime => false,
+        ExprKind::Load(p) => place_has_call(p),
+        ExprKind::Unary(_, x) | ExprKind::Convert(x) => has_call(x),
+        ExprKind::Check { value, .. } => has_call(value),
+        ExprKind::Binary(_, x, y) => has_call(x) || has_call(y),
+        ExprKind::Intrinsic { args, .. } => args.iter().any(has_call),
+    }
+}
+
+/// Whether an index of a place calls a function.
+pub fn place_has_call(p: &Place) -> bool {
+    p.proj.iter().any(|pr| match pr {
+        Proj::Index(idx) => idx.iter().any(|(e, _, _)| has_call(e)),
+        _ => false,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn used_variables_are_those_the_body_names() {
+        let m = crate::test_module(
+            "FUNCTION_BLOCK F
+VAR_INPUT i : INT; unused_in : INT; END_VAR
+VAR_OUTPUT o : INT; END_VAR
+VAR a : ARRAY[1..3] OF INT; k : INT; never : INT; END_VAR
+  a[k] := i;
+  F2(x := a[2], y => o);
+END_FUNCTION_BLOCK
+FUNCTION F2 : INT
+VAR_INPUT x : INT; END_VAR
+VAR_OUTPUT y : INT; END_VAR
+  y := x;
+  F2 := 0;
+END_FUNCTION
+PROGRAM P VAR f : F; END_VAR f(i := 1, unused_in := 2); END_PROGRAM",
+        );
+        let pou = m
+            .pous
+            .iter()
+            .find(|p| m.name(p.name).eq_ignore_ascii_case("F"))
+            .unwrap();
+        let used = super::used_vars(&pou.body, pou.vars.len());
+        let names: Vec<String> = pou
+            .vars
+            .iter()
+            .zip(&used)
+            .filter(|(_, &u)| u)
+            .map(|(v, _)| m.name(v.name).to_ascii_lowercase())
+            .collect();
+        assert_eq!(names, ["i", "o", "a", "k"]);
+    }
 }

@@ -403,7 +403,7 @@ impl<'a> Compiler<'a> {
             }
             stc_ir::visit::places(&p.body, &mut |pl: &Place| {
                 if let Root::Direct(a) = &pl.root {
-                    found.push((a.clone(), addr_type(m, a)));
+                    found.push((a.clone(), m.addr_type(a)));
                 }
             });
         }
@@ -626,8 +626,8 @@ impl<'a> Compiler<'a> {
                 })
             }
             stc_sema::DataRef::Direct(a) => {
-                let off = self.io_slot(a, addr_type(self.m, a));
-                let t = addr_type(self.m, a);
+                let off = self.io_slot(a, self.m.addr_type(a));
+                let t = self.m.addr_type(a);
                 Some(Source::Addr {
                     offset: off,
                     ty: self.ty_ref(t),
@@ -1363,7 +1363,7 @@ impl<'a> Compiler<'a> {
     fn assign(&mut self, place: &Place, value: &Expr) -> Result<(), CompileError> {
         // The element address may be computed after the value only when
         // the value cannot change the index (it calls nothing).
-        let pl = if has_call(value) {
+        let pl = if stc_ir::visit::has_call(value) {
             self.place(place)?
         } else {
             self.place_lazy(place)?
@@ -1581,7 +1581,7 @@ impl<'a> Compiler<'a> {
         let mut ty = match &p.root {
             Root::Var(v) => self.m.pous[self.cur.0 as usize].var(*v).ty,
             Root::Global(g) => self.m.globals[g.0 as usize].ty,
-            Root::Direct(a) => addr_type(self.m, a),
+            Root::Direct(a) => self.m.addr_type(a),
         };
         let mut part = None;
         for proj in &p.proj {
@@ -2427,38 +2427,6 @@ fn width_instr(size: u32, options: [Instr; 4]) -> Instr {
         4 => c,
         _ => d,
     }
-}
-
-/// The type a direct address has when used without a declared variable.
-fn addr_type(m: &Module, a: &DirectAddress) -> TypeId {
-    let e = match a.size {
-        AddrSize::Bit => ElemType::Bool,
-        AddrSize::Byte => ElemType::Byte,
-        AddrSize::Word => ElemType::Word,
-        AddrSize::Dword => ElemType::Dword,
-        AddrSize::Lword => ElemType::Lword,
-    };
-    m.types_elem(e)
-}
-
-/// Whether an expression calls a function (which could change variables).
-fn has_call(e: &Expr) -> bool {
-    match &e.kind {
-        ExprKind::CallFn { .. } => true,
-        ExprKind::Const(_) | ExprKind::CurTime => false,
-        ExprKind::Load(p) => place_has_call(p),
-        ExprKind::Unary(_, x) | ExprKind::Convert(x) => has_call(x),
-        ExprKind::Check { value, .. } => has_call(value),
-        ExprKind::Binary(_, x, y) => has_call(x) || has_call(y),
-        ExprKind::Intrinsic { args, .. } => args.iter().any(has_call),
-    }
-}
-
-fn place_has_call(p: &Place) -> bool {
-    p.proj.iter().any(|pr| match pr {
-        Proj::Index(idx) => idx.iter().any(|(e, _, _)| has_call(e)),
-        _ => false,
-    })
 }
 
 /// The compare-and-branch jumping when `a op b` is `when`. Integers negate

@@ -120,14 +120,17 @@ fn load(files: &[PathBuf], opts: &Options) -> Result<(Image, String), Outcome> {
             ..Outcome::default()
         });
     }
-    let module = driver::lower(a);
+    let (module, sources) = driver::lower_keeping_sources(a);
     match stc_vm::compile(&module) {
         Ok(image) => Ok((image, rendered)),
-        Err(e) => Err(Outcome {
-            stderr: format!("{rendered}error: cannot compile for the VM: {e}\n"),
-            status: EXIT_ERRORS,
-            ..Outcome::default()
-        }),
+        Err(e) => {
+            let (text, status) = crate::cli::vm_compile_error(&e, &sources, opts);
+            Err(Outcome {
+                stderr: format!("{rendered}{text}"),
+                status,
+                ..Outcome::default()
+            })
+        }
     }
 }
 

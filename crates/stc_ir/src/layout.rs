@@ -84,7 +84,7 @@ fn checked(size: Option<u64>, align: u32) -> Lay {
     }
 }
 
-/// "needs 5 248 000 336 bytes" or "needs more than ... bytes".
+/// "needs 5248000328 bytes" or "needs more than ... bytes".
 fn needs(size: Option<u64>) -> String {
     match size {
         Some(s) => format!("needs {s} bytes"),
@@ -102,6 +102,8 @@ pub struct Layouts {
     pub pous: Vec<PouLayout>,
     /// By POU: whether its instance and frame fit (`Err`: too large).
     pou_ok: Vec<Result<(), TooLarge>>,
+    /// By type: whether a declaration of it was reported as too large.
+    declared: Vec<bool>,
     diagnostics: Vec<Diagnostic>,
 }
 
@@ -161,19 +163,40 @@ impl Layouts {
             fields: vec![Vec::new(); m.types.len()],
             pous: vec![PouLayout::default(); m.pous.len()],
             pou_ok: vec![Ok(()); m.pous.len()],
+            declared: vec![false; m.types.len()],
             diagnostics: Vec::new(),
         };
         let mut state = vec![0u8; m.pous.len()];
         for p in 0..m.pous.len() {
             l.pou(m, p, &mut state);
         }
-        for t in 0..m.types.len() {
-            // (An anonymous type too large is reported where it is used.)
-            let _ = l.ty(m, TypeId(t as u32), &mut state);
-        }
         for g in &m.globals {
             let what = format!("global `{}`", m.spelled(g.name, g.span));
             let _ = l.decl(m, g.ty, g.span, what, &mut state);
+        }
+        // The types of references too, once every instance is laid out (a
+        // VAR_EXTERNAL no global binds gets a variable of its own).
+        for pou in &m.pous {
+            for v in pou.vars.iter().filter(|v| v.storage == Storage::Ref) {
+                let what = format!("variable `{}`", m.spelled(v.name, v.span));
+                let _ = l.decl(m, v.ty, v.span, what, &mut state);
+            }
+        }
+        for t in 0..m.types.len() {
+            let t = TypeId(t as u32);
+            // An anonymous type too large is reported where it is declared
+            // (variable, member, global); one used nowhere, at its own
+            // span: no type is left without a layout and without an error.
+            if let Err(e) = l.ty(m, t, &mut state) {
+                if !e.reported && !l.declared[t.0 as usize] {
+                    let span = m.types.get(t).span.unwrap_or_default();
+                    l.report(span, "the type".into(), e.size);
+                    l.types[t.0 as usize] = Some(Err(TooLarge {
+                        reported: true,
+                        ..e
+                    }));
+                }
+            }
         }
         l.data_area(m);
         if l.diagnostics.is_empty() {
@@ -209,6 +232,9 @@ impl Layouts {
         match l {
             Err(e) if !e.reported => {
                 self.report(span, what, e.size);
+                if let Some(d) = self.declared.get_mut(t.0 as usize) {
+                    *d = true;
+                }
                 Err(TooLarge {
                     reported: true,
                     ..e
@@ -264,7 +290,7 @@ impl Layouts {
     fn pou(&mut self, m: &Module, p: usize, state: &mut [u8]) {
         if state[p] != 0 {
             // 1: in progress (an instance containing itself is reported by
-            // the analyser as recursion; give it no size).
+            // the analyser as recursion), 2: done.
             return;
         }
         state[p] = 1;
@@ -394,6 +420,11 @@ impl Layouts {
             }
             TypeKind::Fb(p) | TypeKind::Program(p) => {
                 self.pou(m, p.0 as usize, state);
+                if state[p.0 as usize] != 2 {
+                    // An instance containing itself (the analyser reports
+                    // the recursion): no size, and nothing cached.
+                    return Ok(Layout::default());
+                }
                 self.pou_ok[p.0 as usize].map(|()| self.pous[p.0 as usize].instance)
             }
         };
@@ -420,10 +451,14 @@ impl Layouts {
 
     /// The layout of a type (of the module the layouts were computed
     /// for: every type has one).
+    ///
+    /// # Panics
+    /// For a type of another module: [`Layouts::compute`] succeeds only
+    /// when every type of its module has a layout.
     pub fn of(&self, t: TypeId) -> Layout {
         match self.types.get(t.0 as usize) {
             Some(Some(Ok(l))) => *l,
-            _ => Layout::default(),
+            _ => panic!("no layout for type {}", t.0),
         }
     }
 
@@ -450,3 +485,6 @@ impl Layouts {
         self.pous[p.0 as usize].offsets[v.0 as usize]
     }
 }
+
+#[cfg(test)]
+mod tests;

@@ -88,7 +88,7 @@ fn model(s: &Spec) -> (Option<u128>, u128) {
     fn up(x: Option<u128>, a: u128) -> Option<u128> {
         x.and_then(|x| x.checked_next_multiple_of(a))
     }
-    fn area<'a>(members: impl Iterator<Item = (Option<u128>, u128)>) -> (Option<u128>, u128) {
+    fn area(members: impl Iterator<Item = (Option<u128>, u128)>) -> (Option<u128>, u128) {
         let mut size = Some(0u128);
         let mut align = 1;
         for (s, a) in members {
@@ -358,7 +358,7 @@ fn check_layouts(m: &Module, l: &Layouts) -> Result<(), TestCaseError> {
             TypeKind::Array { dims, elem } => {
                 let e = l.of(*elem);
                 let stride = l.stride(&m.types, t);
-                prop_assert!(stride >= e.size && stride % e.align.max(1) == 0);
+                prop_assert!(stride >= e.size && stride.is_multiple_of(e.align.max(1)));
                 let n: i128 = dims.iter().map(|(lo, hi)| hi - lo + 1).product();
                 prop_assert_eq!(i128::from(lay.size), i128::from(stride) * n);
                 prop_assert_eq!(lay.align, e.align);

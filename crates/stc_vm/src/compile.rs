@@ -110,9 +110,9 @@ struct Frame {
     /// Top of the temporaries.
     top: u32,
     max: u32,
-    /// Whether a temporary did not fit in [`MAX_SIZE`] (the POU is then
-    /// reported, and its code thrown away).
-    overflow: bool,
+    /// The end of the largest temporary that did not fit in [`MAX_SIZE`]
+    /// (the POU is then reported, and its code thrown away).
+    overflow: Option<u64>,
 }
 
 struct LoopCtx {
@@ -941,14 +941,15 @@ impl<'a> Compiler<'a> {
         self.block(&pou.body)?;
         self.emit(Instr::Ret {});
         let size = align_up(self.frame.max, 8);
-        if self.frame.overflow || u64::from(size) > MAX_SIZE {
+        let need = self.frame.overflow.unwrap_or(0).max(u64::from(size));
+        if need > MAX_SIZE {
             return Err(too_large(
                 pou.name_span,
                 format!(
                     "{} with its temporaries and the frames of its calls",
                     frame_of()
                 ),
-                u64::from(self.frame.max).max(MAX_SIZE + 1),
+                need,
             ));
         }
         self.frames[p.0 as usize] = Some(FrameInfo {
@@ -1023,7 +1024,7 @@ impl<'a> Compiler<'a> {
         let off = align_up(self.frame.top, 8);
         let end = u64::from(off) + u64::from(size.max(1));
         if end > MAX_SIZE {
-            self.frame.overflow = true;
+            self.frame.overflow = Some(self.frame.overflow.unwrap_or(0).max(end));
             return Op::frame(0);
         }
         self.frame.top = end as u32;

@@ -293,6 +293,10 @@ fn run(cli: Cli) -> Outcome {
                     };
                     match stc_codegen_c::generate(&module, &locate) {
                         Ok(files) => o.tree = Some(Box::new((dir, files))),
+                        Err(stc_codegen_c::Error::Diagnostics(d)) => {
+                            o.stderr.push_str(&driver::render(&d, &sources, &opts));
+                            o.status = EXIT_ERRORS;
+                        }
                         Err(e) => {
                             o.stderr.push_str(&format!("{e}\n"));
                             o.status = EXIT_ERRORS;

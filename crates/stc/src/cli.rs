@@ -14,6 +14,9 @@ use crate::sources;
 pub const EXIT_OK: u8 = 0;
 pub const EXIT_ERRORS: u8 = 1;
 pub const EXIT_USAGE: u8 = 2;
+/// A bug in stc: a panic, or an internal error a phase reported (spec/cli.md:
+/// status 101 is always a bug).
+pub const EXIT_INTERNAL: u8 = 101;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -261,7 +264,12 @@ fn run(cli: Cli) -> Outcome {
                 Emit::Vmasm | Emit::Bytecode => {
                     let image = match stc_vm::compile(&module) {
                         Ok(i) => i,
-                        Err(e) => return usage_error(e),
+                        Err(e) => {
+                            let (text, status) = vm_compile_error(&e, &sources, &opts);
+                            o.stderr.push_str(&text);
+                            o.status = status;
+                            return o;
+                        }
                     };
                     if emit == Emit::Vmasm {
                         stc_vm::asm::disassemble(&image).into_bytes()
@@ -285,6 +293,10 @@ fn run(cli: Cli) -> Outcome {
                     };
                     match stc_codegen_c::generate(&module, &locate) {
                         Ok(files) => o.tree = Some(Box::new((dir, files))),
+                        Err(stc_codegen_c::Error::Diagnostics(d)) => {
+                            o.stderr.push_str(&driver::render(&d, &sources, &opts));
+                            o.status = EXIT_ERRORS;
+                        }
                         Err(e) => {
                             o.stderr.push_str(&format!("{e}\n"));
                             o.status = EXIT_ERRORS;
@@ -304,6 +316,28 @@ fn run(cli: Cli) -> Outcome {
             }
             o
         }
+    }
+}
+
+/// How a failure of the bytecode compiler is reported (the same for
+/// `build` and `run`): the rendered text for stderr and the exit status.
+/// Errors in the program (diagnostics, constructs the VM does not support)
+/// are status 1; an internal error is a bug in stc (status 101).
+pub fn vm_compile_error(
+    e: &stc_vm::CompileError,
+    sm: &stc_diagnostics::SourceMap,
+    opts: &Options,
+) -> (String, u8) {
+    match e {
+        stc_vm::CompileError::Diagnostics(d) => (driver::render(d, sm, opts), EXIT_ERRORS),
+        stc_vm::CompileError::Unsupported(_) => (
+            format!("error: cannot compile for the VM: {e}\n"),
+            EXIT_ERRORS,
+        ),
+        stc_vm::CompileError::Internal(_) => (
+            format!("error: {e} (compiling for the VM; this is a bug in stc)\n"),
+            EXIT_INTERNAL,
+        ),
     }
 }
 

@@ -29,21 +29,24 @@ pub struct Parsed {
     pub diagnostics: Vec<Diagnostic>,
 }
 
-/// A parsed and analysed project.
+/// A parsed and analysed project, lowered to the IR when it has no error.
 pub struct Analysed {
     pub parsed: Parsed,
-    pub analysis: stc_sema::Analysis,
+    /// The analyser's diagnostics, then the memory layout's (E0901).
+    pub diagnostics: Vec<Diagnostic>,
+    /// The project in the IR; `None` when the analysis found errors.
+    pub module: Option<stc_ir::Module>,
     /// Where the standard library prelude sits in the source map.
     pub prelude: Span,
 }
 
 impl Analysed {
-    /// Every diagnostic: the parser's and the analyser's.
+    /// Every diagnostic: the parser's, the analyser's and the layout's.
     pub fn diagnostics(&self) -> impl Iterator<Item = &Diagnostic> {
         self.parsed
             .diagnostics
             .iter()
-            .chain(self.analysis.diagnostics.iter())
+            .chain(self.diagnostics.iter())
     }
 
     pub fn all_diagnostics(&self) -> Vec<Diagnostic> {
@@ -52,39 +55,58 @@ impl Analysed {
 }
 
 /// Parses the project with the standard library prelude appended, then
-/// analyses it.
+/// analyses it; without errors, lowers it to the IR and lays its memory out
+/// (so `stc check` reports a declaration too large for the memory model,
+/// E0901, as every back end would: the layout is computed once, in stc_ir).
 pub fn analyse(mut sources: SourceMap, diagnostics: Vec<Diagnostic>, opts: &Options) -> Analysed {
     let prelude_id = sources
         .add(stc_sema::prelude::PRELUDE_NAME, stc_sema::prelude::source())
         .expect("the prelude fits in the position space");
     let prelude = sources.file(prelude_id).span();
     let mut parsed = parse(sources, diagnostics, opts.iec2);
-    let analysis = stc_sema::analyze(
+    let mut analysis = stc_sema::analyze(
         &parsed.ast,
         &mut parsed.interner,
         &parsed.sources,
         Some(prelude),
         stc_sema::Options { iec2: opts.iec2 },
     );
+    let mut diagnostics = std::mem::take(&mut analysis.diagnostics);
+    let clean = !parsed
+        .diagnostics
+        .iter()
+        .chain(diagnostics.iter())
+        .any(|d| d.is_error());
+    let module = clean.then(|| {
+        let m = stc_ir::lower(&parsed.ast, analysis, &parsed.interner, &parsed.sources);
+        diagnostics.extend(stc_ir::layout::Layouts::check(&m));
+        m
+    });
     Analysed {
         parsed,
-        analysis,
+        diagnostics,
+        module,
         prelude,
     }
 }
 
-/// Lowers an analysed project without errors to the IR.
+/// The IR of an analysed project without errors.
+///
+/// # Panics
+/// When the project has errors (callers check [`failed`] first).
 pub fn lower(a: Analysed) -> stc_ir::Module {
     lower_keeping_sources(a).0
 }
 
 /// The same, keeping the sources (to turn spans of the IR into positions).
+///
+/// # Panics
+/// When the project has errors.
 pub fn lower_keeping_sources(a: Analysed) -> (stc_ir::Module, SourceMap) {
-    let Analysed {
-        parsed, analysis, ..
-    } = a;
-    let m = stc_ir::lower(&parsed.ast, analysis, &parsed.interner, &parsed.sources);
-    (m, parsed.sources)
+    let m = a
+        .module
+        .expect("a project is lowered only when its analysis found no error");
+    (m, a.parsed.sources)
 }
 
 /// Parses every file of the source map as one project.

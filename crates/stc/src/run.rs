@@ -172,11 +172,14 @@ fn load(
     }
     match stc_vm::compile(&module) {
         Ok(image) => Ok((Box::new(Machine::new(Arc::new(image))), rendered)),
-        Err(e) => Err(Outcome {
-            stderr: format!("{rendered}error: cannot compile for the VM: {e}\n"),
-            status: EXIT_ERRORS,
-            ..Outcome::default()
-        }),
+        Err(e) => {
+            let (text, status) = crate::cli::vm_compile_error(&e, &sources, opts);
+            Err(Outcome {
+                stderr: format!("{rendered}{text}"),
+                status,
+                ..Outcome::default()
+            })
+        }
     }
 }
 

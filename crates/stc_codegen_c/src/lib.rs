@@ -45,12 +45,15 @@ pub mod names;
 use stc_ir::Module;
 
 /// Why the C back end could not translate a program.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum Error {
     /// A construct the C back end does not translate (yet).
     Unsupported(String),
     /// The same, at a source position (file, line, column).
     At(String, u32, u32, String),
+    /// Declarations too large for the memory model (E0901; the driver
+    /// reports them before any back end runs).
+    Diagnostics(Vec<stc_diagnostics::Diagnostic>),
 }
 
 impl std::fmt::Display for Error {
@@ -63,6 +66,10 @@ impl std::fmt::Display for Error {
                 f,
                 "{file}:{line}:{col}: error: the C back end does not translate {what}"
             ),
+            Error::Diagnostics(d) => match d.first() {
+                Some(d) => write!(f, "error[{}]: {}", d.code, d.message),
+                None => write!(f, "error: the program cannot be laid out"),
+            },
         }
     }
 }
@@ -113,6 +120,8 @@ pub use gen::Locate;
 /// Every file of the output directory: (name, contents). `locate` turns
 /// spans into positions for error messages.
 pub fn generate(m: &Module, locate: Locate<'_>) -> Result<Vec<(String, String)>, Error> {
+    // The memory model's limits hold for every back end (stc_ir's layout).
+    stc_ir::layout::Layouts::compute(m).map_err(Error::Diagnostics)?;
     let p = gen::program(m, locate)?;
     let mut files = vec![
         ("program.h".to_string(), p.header),

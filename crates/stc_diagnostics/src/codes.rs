@@ -325,6 +325,16 @@ type, or the name connected is not an input or output of the program.";
 "The SINGLE input of an event task must be a BOOL variable; the task runs
 once each time it rises.";
 
+    E0901 Error "too large for the memory model"
+"A data type, a variable, the instance of a function block or program, the
+frame of a call, or the data area (all globals and program instances
+together) needs more than 1 GiB (1 073 741 824 bytes), the limit of the
+memory model: the virtual machine addresses its whole memory (data,
+constants and stack) with 30-bit offsets. The error is reported at the
+declaration that is too large, once: the users of a type reported at its
+declaration are not reported again. Make the arrays smaller, or split the
+data over several variables.";
+
     W0101 Warning "result depends on evaluation order"
 "A variable is written by an output parameter (`=>`) or VAR_IN_OUT of one call
 and read by another argument of the same enclosing call. IEC 61131-3 does not

@@ -83,8 +83,9 @@ pub fn lower(ast: &Ast, analysis: Analysis, interner: &Interner, sources: &Sourc
         .collect();
     let mut pous = Vec::with_capacity(analysis.pous.len());
     for (i, def) in analysis.pous.iter().enumerate() {
+        // (Skipping one would shift the PouId of every later POU.)
         let Item::Pou(src) = &ast.items[def.item] else {
-            continue;
+            panic!("internal error: POU {i} is not declared by a POU item");
         };
         let mut l = Lowerer {
             ast,

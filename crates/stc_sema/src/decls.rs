@@ -579,8 +579,15 @@ impl<'a> Sema<'a> {
                 if !ok || et == TypeId::ERROR {
                     return (TypeId::ERROR, None);
                 }
-                let count: i128 = out.iter().map(|(l, h)| h - l + 1).product();
-                if count > 16 << 20 {
+                // (Checked: many huge dimensions overflow even an i128.)
+                let count = out
+                    .iter()
+                    .try_fold(1i128, |n, (l, h)| n.checked_mul(h - l + 1));
+                if count.is_none_or(|c| c > 16 << 20) {
+                    let count = match count {
+                        Some(c) => c.to_string(),
+                        None => format!("more than {}", i128::MAX),
+                    };
                     self.error(
                         Code::E0705,
                         spec.span,

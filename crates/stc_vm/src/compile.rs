@@ -10,7 +10,8 @@
 //! pointer temporary and `load`/`store`.
 
 use rustc_hash::FxHashMap;
-use stc_ir::layout::{elem_size, Layouts};
+use stc_diagnostics::{Code, Diagnostic, Span};
+use stc_ir::layout::{elem_size, Layouts, MAX_SIZE};
 use stc_ir::{Expr, ExprKind, FaultKind, Module, Place, Proj, Root, Stmt, StmtKind, Storage};
 use stc_sema::{InitValue, PouId, Section, TypeId, TypeKind, VarId};
 use stc_syntax::ast::PouKind as AstPouKind;
@@ -25,14 +26,35 @@ use crate::num::Num;
 
 #[derive(Debug, thiserror::Error)]
 pub enum CompileError {
-    #[error("the program needs more than 1 GiB of memory")]
-    TooLarge,
+    /// Errors in the program found by the back end (E0901: too large for
+    /// the memory model), at their declarations.
+    #[error("{}", .0.first().map_or("the program cannot be compiled", |d| d.message.as_str()))]
+    Diagnostics(Vec<Diagnostic>),
     #[error("{0} is not supported by the bytecode compiler yet")]
     Unsupported(String),
+    /// A bug: the IR or the compiler's own tables broke an invariant.
+    #[error("internal error: {0}")]
+    Internal(String),
 }
 
+fn internal(what: impl Into<String>) -> CompileError {
+    CompileError::Internal(what.into())
+}
+
+/// Rounds up to a multiple of `a`; every value rounded here is at most
+/// [`MAX_SIZE`] (checked where it grows), so this cannot overflow.
 fn align_up(x: u32, a: u32) -> u32 {
     x.div_ceil(a.max(1)) * a.max(1)
+}
+
+/// E0901 at `span`: `what` needs `size` bytes.
+fn too_large(span: Span, what: String, size: u64) -> CompileError {
+    CompileError::Diagnostics(vec![Diagnostic::new(
+        Code::E0901,
+        span,
+        format!("{what} needs {size} bytes; the limit is {MAX_SIZE} bytes (1 GiB)"),
+    )
+    .with_label("too large for the memory model")])
 }
 
 /// A fault kind's code in `fault` instructions.
@@ -88,6 +110,9 @@ struct Frame {
     /// Top of the temporaries.
     top: u32,
     max: u32,
+    /// The end of the largest temporary that did not fit in [`MAX_SIZE`]
+    /// (the POU is then reported, and its code thrown away).
+    overflow: Option<u64>,
 }
 
 struct LoopCtx {
@@ -122,6 +147,9 @@ pub struct Compiler<'a> {
     frame: Frame,
     loops: Vec<LoopCtx>,
     data_frozen: bool,
+    /// The first error met where it could not be returned at once (data
+    /// allocated while initialising): no image is built after one.
+    failed: Option<CompileError>,
 }
 
 #[derive(Clone)]
@@ -134,7 +162,7 @@ struct FrameInfo {
 pub fn compile(m: &Module) -> Result<Image, CompileError> {
     let c = Compiler {
         m,
-        l: Layouts::compute(m),
+        l: Layouts::compute(m).map_err(CompileError::Diagnostics)?,
         code: Vec::new(),
         lines: Vec::new(),
         files: Vec::new(),
@@ -156,6 +184,7 @@ pub fn compile(m: &Module) -> Result<Image, CompileError> {
         frame: Frame::default(),
         loops: Vec::new(),
         data_frozen: false,
+        failed: None,
     };
     c.run()
 }
@@ -191,16 +220,17 @@ impl<'a> Compiler<'a> {
         // Located variables' initial values, once per slot (stc_ir).
         let m = self.m;
         for (a, t, init) in m.located_inits() {
-            let off = self.io_slot(&a, t);
+            let off = self.io_slot(&a, t, Span::default());
             self.write_init(t, off, init, None);
         }
         let mut globals = Vec::new();
         for (gi, g) in self.m.globals.iter().enumerate() {
             let lay = self.l.of(g.ty);
             let off = match g.location.as_ref().filter(|a| !a.is_incomplete()) {
-                Some(a) => self.io_slot(a, g.ty),
+                Some(a) => self.io_slot(a, g.ty, g.span),
                 None => {
-                    let off = self.alloc_data(lay.size, lay.align)?;
+                    let what = format!("global `{}`", self.m.spelled(g.name, g.span));
+                    let off = self.alloc_data(lay.size, lay.align, g.span, &what)?;
                     self.write_init(g.ty, off, g.init.as_ref(), None);
                     off
                 }
@@ -241,7 +271,7 @@ impl<'a> Compiler<'a> {
                         single: t
                             .single
                             .as_ref()
-                            .and_then(|s| self.source(s, self.m.types_bool())),
+                            .and_then(|s| self.source(s, self.m.types_bool(), t.span)),
                     })
                     .collect();
                 let mut programs = Vec::new();
@@ -268,7 +298,7 @@ impl<'a> Compiler<'a> {
         let mut programs = Vec::new();
         for (i, p) in self.m.pous.iter().enumerate() {
             if p.kind == AstPouKind::Program {
-                let off = self.instance(PouId(i as u32), None)?;
+                let off = self.instance(PouId(i as u32), None, p.name_span)?;
                 programs.push(ProgramInst {
                     name: self.m.name(p.name).to_string(),
                     pou: i as u32,
@@ -280,6 +310,9 @@ impl<'a> Compiler<'a> {
             }
         }
         self.data_frozen = true;
+        if let Some(e) = self.failed.take() {
+            return Err(e);
+        }
         // Variable descriptors.
         for i in 0..self.m.pous.len() {
             self.pou_vars(PouId(i as u32));
@@ -288,8 +321,27 @@ impl<'a> Compiler<'a> {
         for p in self.callee_order() {
             self.compile_pou(p)?;
         }
+        if let Some(e) = self.failed.take() {
+            return Err(e);
+        }
         let stack_size = self.stack_need();
         let data_size = self.data.len() as u32;
+        // The whole memory: data, constants, stack.
+        let memory = u64::from(data_size) + self.consts.len() as u64 + u64::from(stack_size);
+        if memory > MAX_SIZE {
+            let deepest = (0..self.m.pous.len())
+                .max_by_key(|&i| self.pous[i].frame_size)
+                .map_or(Span::default(), |i| self.m.pous[i].name_span);
+            return Err(too_large(
+                deepest,
+                format!(
+                    "the program's memory (data area {data_size} bytes, constants {} bytes, \
+                     stack {stack_size} bytes for the deepest frame, this POU's)",
+                    self.consts.len()
+                ),
+                memory,
+            ));
+        }
         Ok(Image {
             code: self.code,
             consts: self.consts,
@@ -377,43 +429,62 @@ impl<'a> Compiler<'a> {
 
     // ----- data area -----------------------------------------------------------
 
-    fn alloc_data(&mut self, size: u32, align: u32) -> Result<u32, CompileError> {
-        let off = align_up(self.data.len() as u32, align.max(1));
-        let end = off as u64 + size as u64;
-        if end > (1 << 30) {
-            return Err(CompileError::TooLarge);
+    /// Places `size` bytes in the data area for `what`, declared at `span`
+    /// (reported with E0901 when the data area would pass [`MAX_SIZE`]).
+    fn alloc_data(
+        &mut self,
+        size: u32,
+        align: u32,
+        span: Span,
+        what: &str,
+    ) -> Result<u32, CompileError> {
+        let a = u64::from(align.max(1));
+        let off = (self.data.len() as u64).div_ceil(a) * a;
+        let end = off + u64::from(size);
+        if end > MAX_SIZE {
+            return Err(too_large(
+                span,
+                format!("the data area (globals, program instances, process image) up to {what}"),
+                end,
+            ));
         }
         self.data.resize(end as usize, 0);
-        Ok(off)
+        Ok(off as u32)
+    }
+
+    /// Keeps the first error met where it cannot be returned at once.
+    fn defer(&mut self, e: CompileError) {
+        self.failed.get_or_insert(e);
     }
 
     fn collect_io(&mut self) {
         let m = self.m;
-        let mut found: Vec<(DirectAddress, TypeId)> = Vec::new();
+        let mut found: Vec<(DirectAddress, TypeId, Span)> = Vec::new();
         for g in &m.globals {
             if let Some(a) = g.location.as_ref().filter(|a| !a.is_incomplete()) {
-                found.push((a.clone(), g.ty));
+                found.push((a.clone(), g.ty, g.span));
             }
         }
         for p in &m.pous {
             for v in &p.vars {
                 if let Some(a) = v.location.as_ref().filter(|a| !a.is_incomplete()) {
-                    found.push((a.clone(), v.ty));
+                    found.push((a.clone(), v.ty, v.span));
                 }
             }
             stc_ir::visit::places(&p.body, &mut |pl: &Place| {
                 if let Root::Direct(a) = &pl.root {
-                    found.push((a.clone(), m.addr_type(a)));
+                    found.push((a.clone(), m.addr_type(a), p.name_span));
                 }
             });
         }
-        for (a, t) in found {
-            self.io_slot(&a, t);
+        for (a, t, span) in found {
+            self.io_slot(&a, t, span);
         }
     }
 
-    /// The data offset of a direct address's slot (allocated on first use).
-    fn io_slot(&mut self, a: &DirectAddress, t: TypeId) -> u32 {
+    /// The data offset of a direct address's slot (allocated on first use,
+    /// by a declaration or use at `span`).
+    fn io_slot(&mut self, a: &DirectAddress, t: TypeId, span: Span) -> u32 {
         if let Some(&off) = self.io_map.get(a) {
             return off;
         }
@@ -421,9 +492,14 @@ impl<'a> Compiler<'a> {
             AddrSize::Bit => 1,
             s => s.bits() / 8,
         };
-        let off = self
-            .alloc_data(size.max(self.size_of(t)), size)
-            .unwrap_or(0);
+        let what = format!("the process image slot {a}");
+        let off = match self.alloc_data(size.max(self.size_of(t)), size, span, &what) {
+            Ok(off) => off,
+            Err(e) => {
+                self.defer(e);
+                0
+            }
+        };
         let ty = self.ty_ref(t);
         self.io.push(IoSlot {
             address: a.clone(),
@@ -528,7 +604,7 @@ impl<'a> Compiler<'a> {
             let voff = off + self.l.pous[p.0 as usize].offsets[i];
             if v.storage == Storage::Ref {
                 let target = if let Some(a) = v.location.as_ref().filter(|a| !a.is_incomplete()) {
-                    Some(self.io_slot(a, v.ty))
+                    Some(self.io_slot(a, v.ty, v.span))
                 } else if v.section == Section::External {
                     let bound = m.bind_global(v.name, v.ty, ctx);
                     Some(match bound.and_then(|g| self.global_off.get(g).copied()) {
@@ -566,15 +642,36 @@ impl<'a> Compiler<'a> {
             return off;
         }
         let lay = self.l.of(t);
-        let off = self.alloc_data(lay.size, lay.align).unwrap_or(0);
+        let var = &self.m.pous[p.0 as usize].vars[v];
+        let what = format!(
+            "the variable of VAR_EXTERNAL `{}` (no global binds it)",
+            self.m.spelled(var.name, var.span)
+        );
+        let off = match self.alloc_data(lay.size, lay.align, var.span, &what) {
+            Ok(off) => off,
+            Err(e) => {
+                self.defer(e);
+                return 0;
+            }
+        };
         self.write_init(t, off, None, None);
         self.private_externals.insert((p.0, v), off);
         off
     }
 
-    fn instance(&mut self, p: PouId, ctx: Option<(usize, usize)>) -> Result<u32, CompileError> {
+    fn instance(
+        &mut self,
+        p: PouId,
+        ctx: Option<(usize, usize)>,
+        span: Span,
+    ) -> Result<u32, CompileError> {
         let lay = self.l.pous[p.0 as usize].instance;
-        let off = self.alloc_data(lay.size, lay.align)?;
+        let pou = &self.m.pous[p.0 as usize];
+        let what = format!(
+            "the instance of program `{}`",
+            self.m.spelled(pou.name, pou.name_span)
+        );
+        let off = self.alloc_data(lay.size, lay.align, span, &what)?;
         self.init_instance(p, off, ctx, &[]);
         Ok(off)
     }
@@ -587,20 +684,20 @@ impl<'a> Compiler<'a> {
         ctx: Option<(usize, usize)>,
         def: &stc_sema::ProgramInstDef,
     ) -> Result<ProgramInst, CompileError> {
-        let off = self.instance(p, ctx)?;
+        let off = self.instance(p, ctx, def.name_span)?;
         let mut inputs = Vec::new();
         let mut outputs = Vec::new();
         for (v, src) in &def.inputs {
             let var = self.m.pous[p.0 as usize].var(*v);
             let ty = self.ty_ref(var.ty);
-            if let Some(s) = self.source(src, var.ty) {
+            if let Some(s) = self.source(src, var.ty, def.name_span) {
                 inputs.push((self.l.var_offset(p, *v), ty, s));
             }
         }
         for (v, dst) in &def.outputs {
             let var = self.m.pous[p.0 as usize].var(*v);
             let ty = self.ty_ref(var.ty);
-            if let Some(s) = self.source(dst, var.ty) {
+            if let Some(s) = self.source(dst, var.ty, def.name_span) {
                 outputs.push((self.l.var_offset(p, *v), ty, s));
             }
         }
@@ -614,19 +711,21 @@ impl<'a> Compiler<'a> {
         })
     }
 
-    /// A configuration data reference as an address.
-    fn source(&mut self, r: &stc_sema::DataRef, ty: TypeId) -> Option<Source> {
+    /// A configuration data reference (written at `span`) as an address;
+    /// `None` only after an error kept with [`Compiler::defer`].
+    fn source(&mut self, r: &stc_sema::DataRef, ty: TypeId, span: Span) -> Option<Source> {
         match r {
             stc_sema::DataRef::Global(g) => {
                 let t = self.m.globals[g.0 as usize].ty;
                 let ty = self.ty_ref(t);
-                Some(Source::Addr {
-                    offset: *self.global_off.get(g.0 as usize)?,
-                    ty,
-                })
+                let Some(&offset) = self.global_off.get(g.0 as usize) else {
+                    self.defer(internal("a connection to a global not placed yet"));
+                    return None;
+                };
+                Some(Source::Addr { offset, ty })
             }
             stc_sema::DataRef::Direct(a) => {
-                let off = self.io_slot(a, self.m.addr_type(a));
+                let off = self.io_slot(a, self.m.addr_type(a), span);
                 let t = self.m.addr_type(a);
                 Some(Source::Addr {
                     offset: off,
@@ -635,7 +734,18 @@ impl<'a> Compiler<'a> {
             }
             stc_sema::DataRef::Const(v) => {
                 let bytes = self.value_bytes(ty, v);
-                let off = self.alloc_data(bytes.len() as u32, 8).ok()?;
+                let off = match self.alloc_data(
+                    bytes.len() as u32,
+                    8,
+                    span,
+                    "a constant connected to a program",
+                ) {
+                    Ok(off) => off,
+                    Err(e) => {
+                        self.defer(e);
+                        return None;
+                    }
+                };
                 self.data[off as usize..off as usize + bytes.len()].copy_from_slice(&bytes);
                 Some(Source::Addr {
                     offset: off,
@@ -774,6 +884,8 @@ impl<'a> Compiler<'a> {
             .collect();
         order.sort_by_key(|&i| if by_caller(&pou.vars[i]) { 0 } else { 1 });
         let mut init_at = 0;
+        let frame_of = || format!("the frame of `{}`", m.spelled(pou.name, pou.name_span));
+        let mut top: u64 = 0;
         for &i in &order {
             let v = &pou.vars[i];
             let lay = if v.storage == Storage::Ref {
@@ -781,14 +893,18 @@ impl<'a> Compiler<'a> {
             } else {
                 self.l.of(v.ty)
             };
-            let off = align_up(self.frame.top, lay.align);
-            self.frame.var_off.insert(i as u32, off);
-            self.frame.top = off + lay.size;
+            let a = u64::from(lay.align.max(1));
+            let off = top.div_ceil(a) * a;
+            top = off + u64::from(lay.size);
+            if top > MAX_SIZE {
+                return Err(too_large(pou.name_span, frame_of(), top));
+            }
+            self.frame.var_off.insert(i as u32, off as u32);
             if by_caller(v) {
-                init_at = self.frame.top;
+                init_at = top as u32;
             }
         }
-        self.frame.top = align_up(self.frame.top, 8);
+        self.frame.top = align_up(top as u32, 8);
         let vars_end = self.frame.top;
         self.frame.max = vars_end;
         // The template: initial values of the frame variables after `init_at`.
@@ -825,6 +941,17 @@ impl<'a> Compiler<'a> {
         self.block(&pou.body)?;
         self.emit(Instr::Ret {});
         let size = align_up(self.frame.max, 8);
+        let need = self.frame.overflow.unwrap_or(0).max(u64::from(size));
+        if need > MAX_SIZE {
+            return Err(too_large(
+                pou.name_span,
+                format!(
+                    "{} with its temporaries and the frames of its calls",
+                    frame_of()
+                ),
+                need,
+            ));
+        }
         self.frames[p.0 as usize] = Some(FrameInfo {
             var_off: self.frame.var_off.clone(),
             size,
@@ -836,7 +963,11 @@ impl<'a> Compiler<'a> {
         code.frame_template = (template, vars_end - init_at);
         for (i, d) in code.vars.iter_mut().enumerate() {
             if d.in_frame {
-                d.offset = self.frame.var_off.get(&(i as u32)).copied().unwrap_or(0);
+                d.offset = *self
+                    .frame
+                    .var_off
+                    .get(&(i as u32))
+                    .ok_or_else(|| internal("a frame variable without a place"))?;
             }
         }
         Ok(())
@@ -844,9 +975,18 @@ impl<'a> Compiler<'a> {
 
     // ----- constants and temporaries -------------------------------------------
 
+    /// The offset of constant bytes in the pool. The pool grows past
+    /// [`MAX_SIZE`] only for a program whose memory check fails at the end
+    /// (no image is built then), so offsets are taken modulo nothing.
     fn const_bytes(&mut self, bytes: &[u8], align: u32) -> u32 {
         if let Some(&off) = self.const_map.get(bytes) {
             return off;
+        }
+        if self.consts.len() as u64 + bytes.len() as u64 > MAX_SIZE {
+            let at = self.m.pous[self.cur.0 as usize].name_span;
+            let size = self.consts.len() as u64 + bytes.len() as u64;
+            self.defer(too_large(at, "the constant pool".into(), size));
+            return 0;
         }
         let off = align_up(self.consts.len() as u32, align.max(1));
         self.consts.resize(off as usize, 0);
@@ -877,9 +1017,17 @@ impl<'a> Compiler<'a> {
         Op::abs(self.data.len() as u32 + off)
     }
 
+    /// A temporary of `size` bytes in the frame. One that does not fit in
+    /// [`MAX_SIZE`] marks the frame as overflowed (the POU is reported, its
+    /// code is never used) and gets offset 0.
     fn temp(&mut self, size: u32) -> Op {
         let off = align_up(self.frame.top, 8);
-        self.frame.top = off + size.max(1);
+        let end = u64::from(off) + u64::from(size.max(1));
+        if end > MAX_SIZE {
+            self.frame.overflow = Some(self.frame.overflow.unwrap_or(0).max(end));
+            return Op::frame(0);
+        }
+        self.frame.top = end as u32;
         self.frame.max = self.frame.max.max(self.frame.top);
         Op::frame(off)
     }
@@ -1273,7 +1421,7 @@ impl<'a> Compiler<'a> {
             return Ok(None);
         }
         self.mark_line(inc);
-        let v = match self.var_loc_of(place) {
+        let v = match self.var_loc_of(place)? {
             Some(v) => v,
             None => return Ok(None),
         };
@@ -1302,14 +1450,14 @@ impl<'a> Compiler<'a> {
     }
 
     /// The operand of a variable place held directly (not by reference).
-    fn var_loc_of(&mut self, p: &Place) -> Option<Op> {
-        match p.root {
-            Root::Var(v) if p.proj.is_empty() => match self.var_loc(v) {
+    fn var_loc_of(&mut self, p: &Place) -> Result<Option<Op>, CompileError> {
+        Ok(match p.root {
+            Root::Var(v) if p.proj.is_empty() => match self.var_loc(v)? {
                 Loc::At(a) => Some(a),
                 _ => None,
             },
             _ => None,
-        }
+        })
     }
 
     fn switch(
@@ -1539,20 +1687,26 @@ impl<'a> Compiler<'a> {
 
     // ----- places ------------------------------------------------------------------
 
-    fn var_loc(&mut self, v: VarId) -> Loc {
+    fn var_loc(&mut self, v: VarId) -> Result<Loc, CompileError> {
         let pou = &self.m.pous[self.cur.0 as usize];
         let var = pou.var(v);
         let in_frame = self.l.pous[self.cur.0 as usize].in_frame[v.0 as usize];
         let slot = if in_frame {
-            Op::frame(self.frame.var_off.get(&v.0).copied().unwrap_or(0))
+            Op::frame(
+                *self
+                    .frame
+                    .var_off
+                    .get(&v.0)
+                    .ok_or_else(|| internal("a frame variable without a place"))?,
+            )
         } else {
             Op::this(self.l.pous[self.cur.0 as usize].offsets[v.0 as usize])
         };
-        if var.storage == Storage::Ref {
+        Ok(if var.storage == Storage::Ref {
             Loc::Ptr { ptr: slot, off: 0 }
         } else {
             Loc::At(slot)
-        }
+        })
     }
 
     /// A place, with every address computed.
@@ -1568,13 +1722,17 @@ impl<'a> Compiler<'a> {
     /// [`Loc::Elem`] for the caller to read or write in one instruction.
     fn place_lazy(&mut self, p: &Place) -> Result<PlaceLoc, CompileError> {
         let mut loc = match &p.root {
-            Root::Var(v) => self.var_loc(*v),
+            Root::Var(v) => self.var_loc(*v)?,
             Root::Global(g) => Loc::At(Op::abs(
-                self.global_off.get(g.0 as usize).copied().unwrap_or(0),
+                *self
+                    .global_off
+                    .get(g.0 as usize)
+                    .ok_or_else(|| internal("a global without a place"))?,
             )),
             Root::Direct(a) => {
-                let off = self.io_map.get(a).copied().unwrap_or(0);
-                Loc::At(Op::abs(off))
+                Loc::At(Op::abs(*self.io_map.get(a).ok_or_else(|| {
+                    internal(format!("{a} without a process image slot"))
+                })?))
             }
         };
         // The type of the value reached so far, to find offsets.
@@ -1605,7 +1763,7 @@ impl<'a> Compiler<'a> {
                 Proj::Index(idx) => {
                     let (dims, elem) = match self.m.types.kind(ty).clone() {
                         TypeKind::Array { dims, elem } => (dims, elem),
-                        _ => return Err(CompileError::Unsupported("indexing a non-array".into())),
+                        _ => return Err(internal("indexing a non-array")),
                     };
                     let stride = self.l.stride(&self.m.types, ty);
                     // Strides per dimension: the element stride times the
@@ -2198,10 +2356,15 @@ impl<'a> Compiler<'a> {
     ) -> Result<Option<Op>, CompileError> {
         let info = self.frames[func.0 as usize]
             .clone()
-            .ok_or_else(|| CompileError::Unsupported("a call before its callee".into()))?;
+            .ok_or_else(|| internal("a call before its callee"))?;
         let callee = &self.m.pous[func.0 as usize];
+        if (0..callee.vars.len()).any(|i| !info.var_off.contains_key(&(i as u32))) {
+            return Err(internal(
+                "a variable of a function without a place in its frame",
+            ));
+        }
         let region = self.temp(info.size).offset();
-        let slot = |v: VarId| Op::frame(region + info.var_off.get(&v.0).copied().unwrap_or(0));
+        let slot = |v: VarId| Op::frame(region + info.var_off[&v.0]);
         // Every input: given, or its initial value.
         for (i, v) in callee.vars.iter().enumerate() {
             if v.section != Section::Input {
@@ -2347,7 +2510,7 @@ impl<'a> Compiler<'a> {
     ) -> Result<(), CompileError> {
         let info = self.frames[fb.0 as usize]
             .clone()
-            .ok_or_else(|| CompileError::Unsupported("a call before its callee".into()))?;
+            .ok_or_else(|| internal("a call before its callee"))?;
         let pl = self.place(instance)?;
         let lay = self.l.pous[fb.0 as usize].clone();
         let m = self.m;

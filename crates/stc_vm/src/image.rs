@@ -66,42 +66,57 @@ impl Image {
     }
 
     /// The size in bytes of a value of type `t` (a structure without its
-    /// trailing padding); 0 for an unknown type. Bounded for hostile tables.
+    /// trailing padding); 0 for an unknown type. `u64::MAX` where
+    /// [`Image::checked_type_size`] has none: no memory holds such a
+    /// value, so every range check against it fails (the verifier rejects
+    /// an image that places one).
     pub fn type_size(&self, t: TypeRef) -> u64 {
+        self.checked_type_size(t).unwrap_or(u64::MAX)
+    }
+
+    /// The size in bytes of a value of type `t`, computed without
+    /// overflow; `None` past `u64` or for types nested deeper than 256
+    /// (only a hostile table has either).
+    pub fn checked_type_size(&self, t: TypeRef) -> Option<u64> {
         self.type_size_at(t, 0)
     }
 
-    fn type_size_at(&self, t: TypeRef, depth: u32) -> u64 {
-        if depth > 64 {
-            return 0;
+    fn type_size_at(&self, t: TypeRef, depth: u32) -> Option<u64> {
+        if depth > 256 {
+            return None;
         }
-        match self.types.get(t as usize) {
+        Some(match self.types.get(t as usize) {
             Some(TypeDesc::Scalar(e))
             | Some(TypeDesc::Enum { base: e, .. })
             | Some(TypeDesc::Subrange { base: e, .. }) => stc_ir::layout::elem_size(*e) as u64,
             Some(TypeDesc::String { wide, cap }) => 2 + *cap as u64 * if *wide { 2 } else { 1 },
             Some(TypeDesc::Array { dims, stride, .. }) => {
-                let n: i128 = dims
-                    .iter()
-                    .map(|(l, h)| (*h as i128 - *l as i128 + 1).max(0))
-                    .fold(1i128, |a, n| a.saturating_mul(n));
-                (n.clamp(0, u32::MAX as i128) as u64).saturating_mul(*stride as u64)
+                let n = dims.iter().try_fold(1u64, |a, (l, h)| {
+                    let n = (i128::from(*h) - i128::from(*l) + 1).max(0);
+                    a.checked_mul(u64::try_from(n).ok()?)
+                })?;
+                n.checked_mul(u64::from(*stride))?
             }
-            Some(TypeDesc::Struct { fields, .. }) => fields
-                .iter()
-                .map(|f| (f.offset as u64).saturating_add(self.type_size_at(f.ty, depth + 1)))
-                .max()
-                .unwrap_or(0),
+            Some(TypeDesc::Struct { fields, .. }) => {
+                let mut end = 0;
+                for f in fields {
+                    let e = u64::from(f.offset).checked_add(self.type_size_at(f.ty, depth + 1)?)?;
+                    end = end.max(e);
+                }
+                end
+            }
             Some(TypeDesc::Instance { pou }) => self
                 .pous
                 .get(*pou as usize)
                 .map_or(0, |p| p.instance_size as u64),
             None => 0,
-        }
+        })
     }
 
+    /// The whole memory: data area, constants, stack (in `u64`: a loaded
+    /// file may claim any sizes; the verifier bounds them).
     pub fn memory_size(&self) -> u64 {
-        self.stack_base() as u64 + self.stack_size as u64
+        u64::from(self.data_size) + self.consts.len() as u64 + u64::from(self.stack_size)
     }
 
     /// The source position of an instruction: (POU, file, line, column).

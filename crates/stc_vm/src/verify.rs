@@ -13,7 +13,8 @@ use crate::image::*;
 use crate::instr::{FieldKind, Instr, Op, MODE_ABS, MODE_FRAME, MODE_THIS};
 use crate::num::Num;
 
-const MAX_MEMORY: u64 = 1 << 30;
+/// The memory model's limit (one constant with the layout's).
+const MAX_MEMORY: u64 = stc_ir::layout::MAX_SIZE;
 
 pub fn verify(img: &Image) -> Result<(), String> {
     if img.init.len() as u64 != img.data_size as u64 {
@@ -174,8 +175,8 @@ pub fn verify(img: &Image) -> Result<(), String> {
         for (off, ty, Source::Addr { offset, ty: sty }) in p.inputs.iter().chain(p.outputs.iter()) {
             type_ok(img, *ty)?;
             type_ok(img, *sty)?;
-            if *off as u64 + value_size(img, *ty) > pou.instance_size as u64
-                || *offset as u64 + value_size(img, *sty) > abs_end
+            if *off as u64 + value_size(img, *ty)? > pou.instance_size as u64
+                || *offset as u64 + value_size(img, *sty)? > abs_end
             {
                 return Err(format!("a connection of `{}` lies outside memory", p.name));
             }
@@ -206,13 +207,13 @@ pub fn verify(img: &Image) -> Result<(), String> {
     }
     for g in &img.globals {
         type_ok(img, g.ty)?;
-        if g.offset as u64 + value_size(img, g.ty) > data {
+        if g.offset as u64 + value_size(img, g.ty)? > data {
             return Err(format!("global `{}` lies outside the data area", g.name));
         }
     }
     for s in &img.io {
         type_ok(img, s.ty)?;
-        if s.offset as u64 + value_size(img, s.ty) > data {
+        if s.offset as u64 + value_size(img, s.ty)? > data {
             return Err(format!(
                 "process image slot {} lies outside the data area",
                 s.address
@@ -241,9 +242,12 @@ fn type_ok(img: &Image, t: TypeRef) -> Result<(), String> {
     }
 }
 
-/// The size in bytes of a value of a type (bounded, for range checks).
-fn value_size(img: &Image, t: TypeRef) -> u64 {
-    img.type_size(t)
+/// The size in bytes of a value of a type, at most the memory's (so
+/// offsets plus sizes cannot overflow).
+fn value_size(img: &Image, t: TypeRef) -> Result<u64, String> {
+    img.checked_type_size(t)
+        .filter(|&n| n <= MAX_MEMORY)
+        .ok_or_else(|| format!("type {t} is larger than the memory"))
 }
 
 /// An operand of `size` bytes in the context of POU `pou`.

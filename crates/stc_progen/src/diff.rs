@@ -150,7 +150,12 @@ impl Report {
             CSide::Skipped | CSide::Unavailable(_) => None,
             CSide::BuildFailed(o) => Some(format!(
                 "`stc run --backend c` could not build the program (exit {}):\n{}{}",
-                o.status, o.stdout, o.stderr
+                o.status,
+                o.stdout,
+                // Its own message, without the warnings `stc check` printed.
+                o.stderr
+                    .strip_prefix(self.check.stderr.as_str())
+                    .unwrap_or(&o.stderr)
             )),
             CSide::Ran(c) => {
                 let mut diffs = Vec::new();

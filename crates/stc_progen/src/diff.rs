@@ -1,19 +1,27 @@
 //! The differential driver: one generated program through `stc check`,
-//! `stc run` on the bytecode VM (in-process, [`stc::cli::run_args`]) and
-//! the C back end (`stc build --emit c -o DIR`, `make -C DIR sim`,
-//! `DIR/sim` with the same options), comparing stdout, stderr and the exit
-//! status byte for byte.
+//! then `stc run` on the bytecode VM and `stc run --backend c` (the C back
+//! end's output compiled by the system C compiler into a shared library and
+//! loaded, `stc_engine_c`) with the same options, both in-process through
+//! [`stc::cli::run_args`], comparing stdout, stderr and the exit status
+//! byte for byte.
 //!
-//! The VM's stderr starts with the warnings of compiling the source, which
-//! the simulation harness (a compiled program) cannot print: they are the
-//! text `stc check` prints, and are removed before comparing.
+//! Both sides go through the same command-line path, so both print the
+//! compile warnings first on stderr and their whole stderr is compared; the
+//! VM's stderr must also start with the warnings `stc check` prints.
 //!
-//! While `--emit c` is not implemented, the C side reports
+//! The C side has no process and so no time limit: its loops are bounded by
+//! the watchdog compiled into the C (`--max-steps`, the generator's limit),
+//! as the VM's are. A crash of the generated C (a bug) would take the driver
+//! down with it; the directory of the program being run is then left in the
+//! work directory. The C compiler's flags are `stc_engine_c`'s
+//! (`-std=c99 -O1 ...`, then `$STC_CFLAGS`); `stc-progen run` sets
+//! `STC_CFLAGS=-O0` when it is unset (see `main.rs`). The C runtime object
+//! is compiled once and cached by `stc_engine_c` itself.
+//!
+//! When no C compiler can be run, the C side reports
 //! [`CSide::Unavailable`] and only the VM-side checks run.
 
-use std::io::Read;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
@@ -25,7 +33,7 @@ use crate::{program, Generated, Size};
 pub struct Output {
     pub stdout: String,
     pub stderr: String,
-    /// The exit status (-1: killed by a signal or by the time limit).
+    /// The exit status (101: `stc` panicked).
     pub status: i32,
 }
 
@@ -44,14 +52,16 @@ impl From<stc::cli::Outcome> for Output {
 pub enum CSide {
     /// Not tried (the options said so, or the source has errors).
     Skipped,
-    /// `stc build --emit c` is not implemented yet, or `make` is missing:
-    /// the reason.
+    /// No C compiler can be run (`stc run --backend c` exits 2 with
+    /// `error: --backend c: cannot run the C compiler ...`): the message.
     Unavailable(String),
-    /// `stc build --emit c` failed on a program the analyser accepted.
+    /// `stc run --backend c` could not set the program up although the
+    /// analyser accepted it: the C back end does not translate it (exit 1,
+    /// `... does not translate ...`), or the C compiler failed on the
+    /// generated C or the library did not load (exit 2,
+    /// `error: --backend c: ...`).
     BuildFailed(Output),
-    /// `make -C DIR sim` failed.
-    MakeFailed(Output),
-    /// The simulation harness ran.
+    /// The program ran on the C engine (whatever its exit status).
     Ran(Output),
 }
 
@@ -59,7 +69,7 @@ pub enum CSide {
 #[derive(Clone, Debug)]
 pub struct Report {
     pub seed: u64,
-    /// Where the source (and the C tree) are.
+    /// Where the source is.
     pub dir: PathBuf,
     pub check: Output,
     /// `None` when `stc check` found errors.
@@ -69,7 +79,8 @@ pub struct Report {
     pub cycles: u64,
     /// Wall time of the VM side (check and run).
     pub vm_time: Duration,
-    /// Wall time of the C side (build, make, run).
+    /// Wall time of the C side (analysis, C generation, C compilation,
+    /// run).
     pub c_time: Duration,
 }
 
@@ -138,15 +149,15 @@ impl Report {
         match &self.c {
             CSide::Skipped | CSide::Unavailable(_) => None,
             CSide::BuildFailed(o) => Some(format!(
-                "`stc build --emit c` exits {}:\n{}{}",
-                o.status, o.stdout, o.stderr
-            )),
-            CSide::MakeFailed(o) => Some(format!(
-                "`make sim` exits {}:\n{}{}",
-                o.status, o.stdout, o.stderr
+                "`stc run --backend c` could not build the program (exit {}):\n{}{}",
+                o.status,
+                o.stdout,
+                // Its own message, without the warnings `stc check` printed.
+                o.stderr
+                    .strip_prefix(self.check.stderr.as_str())
+                    .unwrap_or(&o.stderr)
             )),
             CSide::Ran(c) => {
-                let vm_err = self.vm_runtime_stderr().unwrap_or_default();
                 let mut diffs = Vec::new();
                 if vm.status != c.status {
                     diffs.push(format!("exit status: VM {}, C {}", vm.status, c.status));
@@ -157,10 +168,10 @@ impl Report {
                         first_difference(&vm.stdout, &c.stdout)
                     ));
                 }
-                if vm_err != c.stderr {
+                if vm.stderr != c.stderr {
                     diffs.push(format!(
                         "stderr differs:\n{}",
-                        first_difference(vm_err, &c.stderr)
+                        first_difference(&vm.stderr, &c.stderr)
                     ));
                 }
                 if diffs.is_empty() {
@@ -206,47 +217,20 @@ fn shorten(s: &str, max: usize) -> String {
 pub struct Options {
     /// Try the C back end.
     pub c: bool,
-    /// The `make` program.
-    pub make: String,
-    /// Extra arguments for `make -C DIR sim`: the environment variable
-    /// `STC_DIFF_MAKE_ARGS` (split at spaces) when set, else
-    /// `CFLAGS=-std=c99 -O0`: the programs are small and run briefly, so
-    /// compiling fast is what counts.
-    pub make_args: Vec<String>,
-    /// Time limit for one run of the simulation harness.
-    pub sim_timeout: Duration,
     /// Keep the directories of programs that passed too (those with a
     /// problem are always kept).
     pub keep: bool,
     /// [`run_many`] starts no new program after this many problems (a
     /// back end that fails on everything fails fast).
     pub stop_after: usize,
-    /// Compile the C trees through the caching compiler driver
-    /// ([`crate::cc_cache`]), unless `make_args` set `CC` already.
-    pub cc_cache: Option<CcCache>,
-}
-
-/// Where the caching compiler driver is and where it keeps objects.
-#[derive(Clone, Debug)]
-pub struct CcCache {
-    /// The `stc-progen` binary (run as `stc-progen cc ...`).
-    pub wrapper: PathBuf,
-    pub dir: PathBuf,
 }
 
 impl Default for Options {
     fn default() -> Options {
         Options {
             c: true,
-            make: "make".into(),
-            make_args: match std::env::var("STC_DIFF_MAKE_ARGS") {
-                Ok(s) => s.split_whitespace().map(String::from).collect(),
-                Err(_) => vec!["CFLAGS=-std=c99 -O0".to_string()],
-            },
-            sim_timeout: Duration::from_secs(60),
             keep: false,
             stop_after: 20,
-            cc_cache: None,
         }
     }
 }
@@ -336,105 +320,26 @@ pub fn run_one(g: &Generated, dir: &Path, opts: &Options) -> Result<Report, Stri
 
     if opts.c {
         let t1 = Instant::now();
-        report.c = c_side(&file, dir, &run_opts, opts)?;
+        argv.extend(["--backend", "c"]);
+        report.c = c_side(stc(&argv), &report.check.stderr);
         report.c_time = t1.elapsed();
     }
     Ok(report)
 }
 
-/// Builds and runs the C simulation harness of the program in `file`.
-fn c_side(file: &Path, dir: &Path, run_opts: &[String], opts: &Options) -> Result<CSide, String> {
-    let cdir = dir.join("c");
-    let built = stc(&[
-        "stc",
-        "build",
-        path_str(file)?,
-        "--emit",
-        "c",
-        "-o",
-        path_str(&cdir)?,
-    ]);
-    if built.status != 0 {
-        // A usage error saying so, or a `todo!()` in the back end being
-        // written.
-        if (built.status == 2 && built.stderr.contains("not implemented"))
-            || (built.status == 101 && built.stderr.contains("not yet implemented"))
-        {
-            return Ok(CSide::Unavailable(built.stderr.trim().to_string()));
+/// Classifies the outcome of `stc run ... --backend c`; `warnings` is what
+/// `stc check` printed (the C side prints it before any message of its
+/// own).
+fn c_side(out: Output, warnings: &str) -> CSide {
+    let own = out.stderr.strip_prefix(warnings).unwrap_or(&out.stderr);
+    match out.status {
+        2 if own.starts_with("error: --backend c: cannot run the C compiler") => {
+            CSide::Unavailable(own.trim().to_string())
         }
-        return Ok(CSide::BuildFailed(built));
+        2 if own.starts_with("error: --backend c:") => CSide::BuildFailed(out),
+        1 if own.contains("does not translate") => CSide::BuildFailed(out),
+        _ => CSide::Ran(out),
     }
-    let mut make = Command::new(&opts.make);
-    make.arg("-C").arg(&cdir).arg("sim").args(&opts.make_args);
-    if let Some(c) = &opts.cc_cache {
-        if !opts.make_args.iter().any(|a| a.starts_with("CC=")) {
-            make.arg(format!("CC={} cc", c.wrapper.display()))
-                .env(crate::cc_cache::CACHE_VAR, &c.dir);
-        }
-    }
-    let made = match run_process(make, Duration::from_secs(600)) {
-        Ok(o) => o,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
-            return Ok(CSide::Unavailable(format!("`{}` not found", opts.make)))
-        }
-        Err(e) => return Err(format!("cannot run {}: {e}", opts.make)),
-    };
-    if made.status != 0 {
-        return Ok(CSide::MakeFailed(made));
-    }
-    let mut sim = Command::new(cdir.join("sim"));
-    sim.args(run_opts);
-    let ran = run_process(sim, opts.sim_timeout)
-        .map_err(|e| format!("cannot run {}: {e}", cdir.join("sim").display()))?;
-    Ok(CSide::Ran(ran))
-}
-
-/// Runs a process to its end or the time limit (then kills it: status -1),
-/// collecting both streams.
-fn run_process(mut cmd: Command, limit: Duration) -> std::io::Result<Output> {
-    cmd.stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped());
-    let mut child = cmd.spawn()?;
-    let mut out_pipe = child.stdout.take();
-    let mut err_pipe = child.stderr.take();
-    // Read both pipes on threads so that neither can fill up and block.
-    let out_t = std::thread::spawn(move || {
-        let mut v = Vec::new();
-        if let Some(p) = out_pipe.as_mut() {
-            let _ = p.read_to_end(&mut v);
-        }
-        v
-    });
-    let err_t = std::thread::spawn(move || {
-        let mut v = Vec::new();
-        if let Some(p) = err_pipe.as_mut() {
-            let _ = p.read_to_end(&mut v);
-        }
-        v
-    });
-    let start = Instant::now();
-    let status = loop {
-        if let Some(s) = child.try_wait()? {
-            break s.code().unwrap_or(-1);
-        }
-        if start.elapsed() > limit {
-            let _ = child.kill();
-            let _ = child.wait();
-            break -1;
-        }
-        std::thread::sleep(Duration::from_millis(2));
-    };
-    let stdout = out_t.join().unwrap_or_default();
-    let mut stderr = err_t.join().unwrap_or_default();
-    if status == -1 && start.elapsed() > limit {
-        stderr.extend_from_slice(format!("(killed after {limit:?})\n").as_bytes());
-    }
-    Ok(Output {
-        stdout: String::from_utf8_lossy(&stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&stderr).into_owned(),
-        status,
-    })
 }
 
 /// The totals of a run over many programs.
@@ -643,34 +548,69 @@ mod tests {
     const WARN: &str = "w.st:1:1: warning[W0101]: ...\n";
 
     #[test]
-    fn same_outputs_pass_and_warnings_are_not_compared() {
+    fn same_outputs_pass_and_the_warnings_are_compared_too() {
         let vm = out("{a}\n{b}\n", WARN, 0);
-        let r = report(vm, CSide::Ran(out("{a}\n{b}\n", "", 0)));
+        let r = report(vm.clone(), CSide::Ran(vm));
         assert_eq!(r.problem(), None);
-        let vm = out(
-            "{a}\n",
-            &format!("{WARN}fault: division by zero in Main at w.st:3:1\n"),
-            3,
-        );
-        let c = out("{a}\n", "fault: division by zero in Main at w.st:3:1\n", 3);
-        assert_eq!(report(vm, CSide::Ran(c)).problem(), None);
+        let err = format!("{WARN}fault: division by zero in Main at w.st:3:1\n");
+        let vm = out("{a}\n", &err, 3);
+        assert_eq!(report(vm.clone(), CSide::Ran(vm)).problem(), None);
+        // The C side must print the warnings as well.
+        let vm = out("{a}\n{b}\n", WARN, 0);
+        let p = report(vm, CSide::Ran(out("{a}\n{b}\n", "", 0)))
+            .problem()
+            .unwrap();
+        assert!(p.contains("stderr differs") && p.contains("line 1"), "{p}");
     }
 
     #[test]
     fn differences_are_reported() {
         let vm = out("{a}\n{b}\n", WARN, 0);
-        let p = report(vm.clone(), CSide::Ran(out("{a}\n{c}\n", "", 0)))
+        let p = report(vm.clone(), CSide::Ran(out("{a}\n{c}\n", WARN, 0)))
             .problem()
             .unwrap();
         assert!(p.contains("stdout differs") && p.contains("line 2"), "{p}");
-        let p = report(vm.clone(), CSide::Ran(out("{a}\n{b}\n", "", 3)))
+        let p = report(vm.clone(), CSide::Ran(out("{a}\n{b}\n", WARN, 3)))
             .problem()
             .unwrap();
         assert!(p.contains("exit status: VM 0, C 3"), "{p}");
-        let p = report(vm, CSide::Ran(out("{a}\n{b}\n", "x\n", 0)))
+        let p = report(
+            vm.clone(),
+            CSide::Ran(out("{a}\n{b}\n", &format!("{WARN}x\n"), 0)),
+        )
+        .problem()
+        .unwrap();
+        assert!(p.contains("stderr differs") && p.contains("line 2"), "{p}");
+        let p = report(vm, CSide::BuildFailed(out("", "error: x\n", 2)))
             .problem()
             .unwrap();
-        assert!(p.contains("stderr differs"), "{p}");
+        assert!(
+            p.contains("could not build") && p.contains("error: x"),
+            "{p}"
+        );
+    }
+
+    #[test]
+    fn the_c_side_is_classified() {
+        let c = |stderr: &str, status| c_side(out("", stderr, status), WARN);
+        let no_cc = format!(
+            "{WARN}error: --backend c: cannot run the C compiler `nocc` (No such file); install one\n"
+        );
+        match c(&no_cc, 2) {
+            CSide::Unavailable(why) => assert!(why.starts_with("error: --backend c: cannot run")),
+            other => panic!("{other:?}"),
+        }
+        let cc_failed = format!(
+            "{WARN}error: --backend c: `cc` failed on the generated C (exit status: 1):\n...\n"
+        );
+        assert!(matches!(c(&cc_failed, 2), CSide::BuildFailed(_)));
+        let refused = format!("{WARN}w.st:3:1: error: the C back end does not translate x\n");
+        assert!(matches!(c(&refused, 1), CSide::BuildFailed(_)));
+        assert!(matches!(c(WARN, 0), CSide::Ran(_)));
+        let fault = format!("{WARN}fault: division by zero in Main at w.st:3:1\n");
+        assert!(matches!(c(&fault, 3), CSide::Ran(_)));
+        // A panic is compared (and differs from the VM's status).
+        assert!(matches!(c("panic: oops\n", 101), CSide::Ran(_)));
     }
 
     #[test]
@@ -691,19 +631,5 @@ mod tests {
         assert!(r.problem().unwrap().contains("exits 2"));
         let r = report(out("{a}\n{b}\n", WARN, 0), CSide::Unavailable("no".into()));
         assert_eq!(r.problem(), None);
-    }
-
-    #[cfg(unix)]
-    #[test]
-    fn processes_are_collected_and_timed_out() {
-        let mut c = Command::new("sh");
-        c.args(["-c", "echo out; echo err >&2; exit 3"]);
-        let o = run_process(c, Duration::from_secs(20)).unwrap();
-        assert_eq!(o, out("out\n", "err\n", 3));
-        let mut c = Command::new("sh");
-        c.args(["-c", "exec sleep 10"]);
-        let o = run_process(c, Duration::from_millis(200)).unwrap();
-        assert_eq!(o.status, -1);
-        assert!(o.stderr.contains("killed"), "{}", o.stderr);
     }
 }

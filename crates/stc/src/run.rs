@@ -110,17 +110,18 @@ fn load(files: &[PathBuf], opts: &Options) -> Result<(Image, String), Outcome> {
         return Ok((image, String::new()));
     }
     let (sm, diags) = sources::load(files).map_err(usage_error)?;
-    let a = driver::analyse(sm, diags, opts);
-    let all = a.all_diagnostics();
-    let rendered = driver::render(&all, &a.parsed.sources, opts);
-    if driver::failed(&all, opts) {
-        return Err(Outcome {
-            stderr: rendered,
-            status: EXIT_ERRORS,
-            ..Outcome::default()
-        });
-    }
-    let module = driver::lower(a);
+    let compiled = stc_pipeline::compile(sm, diags, &opts.language);
+    let rendered = driver::render(&compiled.diagnostics, &compiled.sources, opts);
+    let module = match compiled.module {
+        Some(m) if !driver::failed(&compiled.diagnostics, opts) => m,
+        _ => {
+            return Err(Outcome {
+                stderr: rendered,
+                status: EXIT_ERRORS,
+                ..Outcome::default()
+            })
+        }
+    };
     match stc_vm::compile(&module) {
         Ok(image) => Ok((image, rendered)),
         Err(e) => Err(Outcome {

@@ -31,6 +31,7 @@
 //!   image's tables, so the simulation harness resolves the same paths and
 //!   prints the same reports as `stc run`.
 
+pub mod codes;
 pub mod ops;
 
 mod gen;
@@ -100,7 +101,7 @@ CFLAGS ?= -std=c99 -O2 -Wall -Wextra -pedantic
 IO ?= stc_io.c
 SIM_SRC = program.c stc_rt.c $(wildcard stc_sim*.c)
 RT_SRC = program.c stc_rt.c stc_rt_main.c stc_port_posix.c $(IO)
-HEADERS = program.h stc_rt.h stc_gen.h stc_meta.h
+HEADERS = program.h stc_rt.h stc_gen.h stc_meta.h stc_codes.h
 
 sim: $(SIM_SRC) $(HEADERS)
 \t$(CC) $(CFLAGS) -DSTC_WATCHDOG -o sim $(SIM_SRC) -lm
@@ -124,6 +125,7 @@ pub fn generate(m: &Module, locate: Locate<'_>) -> Result<Vec<(String, String)>,
         ("program.h".to_string(), p.header),
         ("program.c".to_string(), p.source),
         ("Makefile".to_string(), MAKEFILE.to_string()),
+        ("stc_codes.h".to_string(), codes::header()),
     ];
     for (name, text) in RUNTIME {
         files.push((name.to_string(), text.to_string()));

@@ -8,11 +8,6 @@
 //! the same options, and compares stdout, stderr and the exit status byte
 //! for byte. The value formats (REAL digits, durations, dates) are also
 //! compared directly with stc_runtime's on many generated values.
-//!
-//! Until `runtime/stc_rt.c` provides `stc_parse_value` and
-//! `stc_convert_scalar`, the harness is linked with the test-only
-//! stand-ins of `tests/sim_fixture/stand_in_rt.c` (also when the variable
-//! `STC_SIM_STAND_IN` is set).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -79,31 +74,15 @@ fn gcc(sources: &[PathBuf], out: &Path) -> Result<(), String> {
     }
 }
 
-/// Builds the harness with a fixture: with the real stc_rt.c when it has
-/// the functions the harness needs and compiles, else with the stand-ins.
+/// Builds the harness with a fixture and the runtime `runtime/stc_rt.c`;
+/// panics (the test fails) when they do not compile.
 fn build(fixture: &str) -> PathBuf {
     let out = work_dir().join(format!("sim_{fixture}"));
     let mut sources = harness_sources();
     sources.push(crate_dir().join(format!("tests/sim_fixture/{fixture}.c")));
-    let real = crate_dir().join("runtime/stc_rt.c");
-    let real_ok = std::env::var_os("STC_SIM_STAND_IN").is_none()
-        && std::fs::read_to_string(&real).is_ok_and(|t| {
-            t.lines()
-                .any(|l| l.starts_with("uint32_t stc_parse_value("))
-                && t.lines()
-                    .any(|l| l.starts_with("uint32_t stc_convert_scalar("))
-        });
-    if real_ok {
-        let mut with_real = sources.clone();
-        with_real.push(real);
-        match gcc(&with_real, &out) {
-            Ok(()) => return out,
-            Err(e) => eprintln!("runtime/stc_rt.c does not build yet, using the stand-ins:\n{e}"),
-        }
-    }
-    sources.push(crate_dir().join("tests/sim_fixture/stand_in_rt.c"));
+    sources.push(crate_dir().join("runtime/stc_rt.c"));
     if let Err(e) = gcc(&sources, &out) {
-        panic!("the harness does not compile:\n{e}");
+        panic!("the harness, the fixture or runtime/stc_rt.c does not compile:\n{e}");
     }
     out
 }

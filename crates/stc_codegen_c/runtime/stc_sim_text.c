@@ -1,7 +1,8 @@
 /*
  * stc_sim_text.c - buffers, UTF-8, and the value formats of `stc run`
  * reports: durations, dates, REAL numbers (the shortest round-trip digits,
- * printed as Rust's Debug / serde_json print them), JSON and ST strings.
+ * laid out as docs/semantics-notes.md, "Text of REAL and LREAL values",
+ * specifies and stc_syntax::real implements), JSON and ST strings.
  */
 #include "stc_sim.h"
 

@@ -8,8 +8,9 @@
 //! the simulation harness (a compiled program) cannot print: they are the
 //! text `stc check` prints, and are removed before comparing.
 //!
-//! While `--emit c` is not implemented, the C side reports
-//! [`CSide::Unavailable`] and only the VM-side checks run.
+//! When `make` is missing, the C side reports [`CSide::Unavailable`] and
+//! only the VM-side checks run; a failing `stc build --emit c` is always a
+//! [`CSide::BuildFailed`].
 
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -44,8 +45,7 @@ impl From<stc::cli::Outcome> for Output {
 pub enum CSide {
     /// Not tried (the options said so, or the source has errors).
     Skipped,
-    /// `stc build --emit c` is not implemented yet, or `make` is missing:
-    /// the reason.
+    /// `make` is missing: the reason.
     Unavailable(String),
     /// `stc build --emit c` failed on a program the analyser accepted.
     BuildFailed(Output),
@@ -355,13 +355,6 @@ fn c_side(file: &Path, dir: &Path, run_opts: &[String], opts: &Options) -> Resul
         path_str(&cdir)?,
     ]);
     if built.status != 0 {
-        // A usage error saying so, or a `todo!()` in the back end being
-        // written.
-        if (built.status == 2 && built.stderr.contains("not implemented"))
-            || (built.status == 101 && built.stderr.contains("not yet implemented"))
-        {
-            return Ok(CSide::Unavailable(built.stderr.trim().to_string()));
-        }
         return Ok(CSide::BuildFailed(built));
     }
     let mut make = Command::new(&opts.make);

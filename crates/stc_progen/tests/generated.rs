@@ -102,13 +102,13 @@ fn vm_and_c_back_end_agree_on_generated_programs() {
         }),
         ..diff::Options::default()
     };
-    // One program first: is the C back end there at all?
+    // One program first: can the C side run at all (is `make` there)?
     let probe = program(first, Size::small());
     let report = diff::run_one(&probe, &work("diff-probe"), &opts).expect("the probe runs");
     match &report.c {
         CSide::Unavailable(why) => {
             eprintln!(
-                "note: differential test skipped, C back end unavailable: {}",
+                "note: differential test skipped, the C side cannot run: {}",
                 why.lines().next().unwrap_or("")
             );
             return;

@@ -159,7 +159,8 @@ fn edge_values() {
 /// 1048576.3, both of which read back).
 #[test]
 fn f32_values_with_wide_intervals() {
-    let x = f64::from(1048576.25f32);
+    let x = f64::from(f32::from_bits(0x4980_0002));
+    assert_eq!(x, 1_048_576.25);
     check(x, true).unwrap();
     assert_eq!(new_text(x, true), "1048576.3");
     assert_eq!(real::json(x, true), "1048576.2");

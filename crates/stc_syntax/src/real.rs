@@ -15,9 +15,8 @@
 //! among the shortest, the closest (an exact tie takes the upper one). The
 //! JSON form breaks exact ties to the even digit instead.
 
-/// The shortest decimal digits of a finite value: `x = ±0.d1d2... * 10^(exp
-/// + 1)`, i.e. `d1.d2d3... * 10^exp`, with no trailing zero (`"0"`, exponent
-/// 0, for zero).
+/// The shortest decimal digits of a finite value: `x = ±d1.d2d3... *
+/// 10^exp`, with no trailing zero (`"0"`, exponent 0, for zero).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Digits {
     pub negative: bool,

@@ -114,7 +114,9 @@ impl Common {
                 Format::Json => MessageFormat::Json,
             },
             warnings_as_errors: !self.warnings.is_empty(),
-            iec2: matches!(self.std, Std::Iec2),
+            language: stc_pipeline::Options {
+                iec2: matches!(self.std, Std::Iec2),
+            },
         }
     }
 }
@@ -130,7 +132,7 @@ pub fn main(args: Vec<OsString>) -> u8 {
     };
     let mut out = std::io::stdout().lock();
     let mut err = std::io::stderr().lock();
-    let outcome = driver::with_big_stack(move || run(cli));
+    let outcome = stc_pipeline::with_big_stack(move || run(cli));
     let _ = out.write_all(outcome.stdout.as_bytes());
     let _ = err.write_all(outcome.stderr.as_bytes());
     if let Err(e) = write_outputs(&outcome) {
@@ -156,7 +158,7 @@ fn write_outputs(outcome: &Outcome) -> Result<(), String> {
 pub fn run_args(args: &[&str]) -> Outcome {
     match Cli::try_parse_from(args) {
         Ok(cli) => {
-            let outcome = driver::with_big_stack(move || run(cli));
+            let outcome = stc_pipeline::with_big_stack(move || run(cli));
             if let Err(e) = write_outputs(&outcome) {
                 return usage_error(e);
             }
@@ -210,7 +212,7 @@ fn run(cli: Cli) -> Outcome {
             let opts = common.options();
             match sources::load(&files) {
                 Ok((sm, diags)) => {
-                    let a = driver::analyse(sm, diags, &opts);
+                    let a = stc_pipeline::analyse(sm, diags, &opts.language);
                     let out = finish_with(
                         &a.all_diagnostics(),
                         &a.parsed.sources,
@@ -252,13 +254,13 @@ fn run(cli: Cli) -> Outcome {
                 Ok(x) => x,
                 Err(e) => return usage_error(e),
             };
-            let a = driver::analyse(sm, diags, &opts);
+            let a = stc_pipeline::analyse(sm, diags, &opts.language);
             let all = a.all_diagnostics();
             let mut o = finish_with(&all, &a.parsed.sources, &opts, String::new());
             if driver::failed(&all, &opts) {
                 return o;
             }
-            let (module, sources) = driver::lower_keeping_sources(a);
+            let (module, sources) = stc_pipeline::lower_keeping_sources(a);
             let bytes = match emit {
                 Emit::Ir => stc_ir::dump::dump(&module, false).into_bytes(),
                 Emit::Vmasm | Emit::Bytecode => {
@@ -343,14 +345,14 @@ pub fn vm_compile_error(
 
 fn load_and_parse(
     files: &[PathBuf],
-    opts: &driver::Options,
-) -> Result<driver::Parsed, sources::LoadError> {
+    opts: &Options,
+) -> Result<stc_pipeline::Parsed, sources::LoadError> {
     let (sm, diags) = sources::load(files)?;
-    Ok(driver::parse(sm, diags, opts.iec2))
+    Ok(stc_pipeline::parse(sm, diags, &opts.language))
 }
 
 /// Renders the diagnostics and picks the exit status.
-fn finish(parsed: &driver::Parsed, opts: &Options, stdout: String) -> Outcome {
+fn finish(parsed: &stc_pipeline::Parsed, opts: &Options, stdout: String) -> Outcome {
     finish_with(&parsed.diagnostics, &parsed.sources, opts, stdout)
 }
 
@@ -373,7 +375,7 @@ fn finish_with(
     }
 }
 
-fn emit_ast(parsed: &driver::Parsed) -> String {
+fn emit_ast(parsed: &stc_pipeline::Parsed) -> String {
     let sm = &parsed.sources;
     let several = sm.len() > 1;
     let pos = |span: stc_diagnostics::Span| match sm.locate(span.lo) {

@@ -1,6 +1,6 @@
 //! The `stc` driver: the only part of stc that touches files, the terminal
 //! and the process. It loads sources into a [`stc_diagnostics::SourceMap`],
-//! runs the phases, renders diagnostics and maps outcomes to the exit
+//! runs the phases ([`stc_pipeline`]), renders diagnostics and maps outcomes to the exit
 //! statuses of spec/cli.md. The integration tests drive it in-process through
 //! the same functions the command uses.
 

@@ -139,17 +139,19 @@ fn load(
         return Ok((Box::new(Machine::new(Arc::new(image))), String::new()));
     }
     let (sm, diags) = sources::load(files).map_err(usage_error)?;
-    let a = driver::analyse(sm, diags, opts);
-    let all = a.all_diagnostics();
-    let rendered = driver::render(&all, &a.parsed.sources, opts);
-    if driver::failed(&all, opts) {
-        return Err(Outcome {
-            stderr: rendered,
-            status: EXIT_ERRORS,
-            ..Outcome::default()
-        });
-    }
-    let (module, sources) = driver::lower_keeping_sources(a);
+    let compiled = stc_pipeline::compile(sm, diags, &opts.language);
+    let rendered = driver::render(&compiled.diagnostics, &compiled.sources, opts);
+    let module = match compiled.module {
+        Some(m) if !driver::failed(&compiled.diagnostics, opts) => m,
+        _ => {
+            return Err(Outcome {
+                stderr: rendered,
+                status: EXIT_ERRORS,
+                ..Outcome::default()
+            })
+        }
+    };
+    let sources = compiled.sources;
     if backend == Backend::C {
         let locate = |sp: stc_diagnostics::Span| {
             sources

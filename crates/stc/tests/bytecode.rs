@@ -3,15 +3,16 @@
 
 mod common;
 
-use stc::driver::{self, Options};
+use stc_pipeline::Options;
 
 fn compile(case: &std::path::Path) -> Option<stc_vm::Image> {
     let (sm, diags) = stc::sources::load(&common::case_files(case)).ok()?;
-    let a = driver::with_big_stack(move || driver::analyse(sm, diags, &Options::default()));
+    let a =
+        stc_pipeline::with_big_stack(move || stc_pipeline::analyse(sm, diags, &Options::default()));
     if a.all_diagnostics().iter().any(|d| d.is_error()) {
         return None;
     }
-    let m = driver::lower(a);
+    let m = stc_pipeline::lower(a);
     Some(stc_vm::compile(&m).expect("compiles"))
 }
 
@@ -101,10 +102,11 @@ fn call_chains_deeper_than_the_interpreter_allows_are_refused() {
         src.push_str("PROGRAM Main\nVAR_OUTPUT r : INT; END_VAR\nr := F0(0);\nEND_PROGRAM\n");
         let mut sm = stc_diagnostics::SourceMap::new();
         sm.add("deep.st", src);
-        let a =
-            driver::with_big_stack(move || driver::analyse(sm, Vec::new(), &Options::default()));
+        let a = stc_pipeline::with_big_stack(move || {
+            stc_pipeline::analyse(sm, Vec::new(), &Options::default())
+        });
         assert!(!a.all_diagnostics().iter().any(|d| d.is_error()));
-        let img = stc_vm::compile(&driver::lower(a)).expect("compiles");
+        let img = stc_vm::compile(&stc_pipeline::lower(a)).expect("compiles");
         stc_vm::format::decode(&stc_vm::format::encode(&img))
     };
     // Main plus 1 023 nested calls fits; one more level does not.

@@ -7,7 +7,7 @@ mod common;
 
 use std::path::Path;
 
-use stc::driver::{self, Options};
+use stc_pipeline::Options;
 
 /// The options of a case from its `// flags:` lines.
 fn options(case: &Path) -> Options {
@@ -34,7 +34,7 @@ fn options(case: &Path) -> Options {
 fn check_case(case: &Path) -> Result<(), String> {
     let (sm, diags) = stc::sources::load(&common::case_files(case)).map_err(|e| e.to_string())?;
     let opts = options(case);
-    let analysed = driver::with_big_stack(move || driver::analyse(sm, diags, &opts));
+    let analysed = stc_pipeline::with_big_stack(move || stc_pipeline::analyse(sm, diags, &opts));
     common::compare(&analysed.all_diagnostics(), &analysed.parsed.sources)
 }
 

@@ -12,7 +12,7 @@ use std::sync::Arc;
 
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
-use stc::driver::{self, Options};
+use stc_pipeline::Options;
 use stc_values::Value;
 
 /// The types expressions are built over.
@@ -263,7 +263,7 @@ enum Outcome {
 fn run(src: String) -> Outcome {
     let mut sm = stc_diagnostics::SourceMap::new();
     sm.add("p.st", src);
-    let a = driver::analyse(sm, Vec::new(), &Options::default());
+    let a = stc_pipeline::analyse(sm, Vec::new(), &Options::default());
     let diags = a.all_diagnostics();
     let errors: Vec<String> = diags
         .iter()
@@ -273,7 +273,7 @@ fn run(src: String) -> Outcome {
     if !errors.is_empty() {
         return Outcome::Rejected(errors);
     }
-    let module = driver::lower(a);
+    let module = stc_pipeline::lower(a);
     let image = Arc::new(stc_vm::compile(&module).expect("the program compiles"));
     let inst = image.programs[0].clone();
     let mut m = stc_vm::Machine::new(image.clone());

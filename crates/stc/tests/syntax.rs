@@ -10,9 +10,11 @@ use std::path::Path;
 use stc::driver;
 use stc_syntax::{dump, print, Interner};
 
-fn parse(path: &Path) -> driver::Parsed {
+fn parse(path: &Path) -> stc_pipeline::Parsed {
     let (sm, diags) = stc::sources::load(&common::case_files(path)).expect("readable test file");
-    driver::with_big_stack(move || driver::parse(sm, diags, false))
+    stc_pipeline::with_big_stack(move || {
+        stc_pipeline::parse(sm, diags, &stc_pipeline::Options::default())
+    })
 }
 
 fn relative(path: &Path) -> String {
@@ -51,7 +53,7 @@ fn valid_files_parse_cleanly_match_snapshots_and_round_trip() {
         let original = dump::dump(&parsed.ast, &parsed.interner, None);
         let pragma_text = |s: stc_diagnostics::Span| sm.slice(s).to_string();
         let printed = print::print(&parsed.ast, &parsed.interner, &pragma_text);
-        let (reparsed, diags) = driver::with_big_stack(|| dump_of(&printed));
+        let (reparsed, diags) = stc_pipeline::with_big_stack(|| dump_of(&printed));
         let reparse_errors = diags.iter().any(|d| d.is_error());
         if reparse_errors || reparsed != original {
             return Err(format!(

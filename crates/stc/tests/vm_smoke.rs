@@ -3,7 +3,8 @@
 
 use std::sync::Arc;
 
-use stc::driver::{self, Options};
+use stc::driver;
+use stc_pipeline::Options;
 use stc_values::Value;
 
 /// Compiles `src`, runs program `prog` for `cycles` cycles of 10 ms and
@@ -11,14 +12,14 @@ use stc_values::Value;
 fn run(src: &str, prog: &str, cycles: u32, outputs: &[&str]) -> Vec<Value> {
     let mut sm = stc_diagnostics::SourceMap::new();
     sm.add("t.st", src.to_string());
-    let a = driver::analyse(sm, Vec::new(), &Options::default());
+    let a = stc_pipeline::analyse(sm, Vec::new(), &Options::default());
     let diags = a.all_diagnostics();
     assert!(
         diags.iter().all(|d| !d.is_error()),
         "{}",
-        driver::render(&diags, &a.parsed.sources, &Options::default())
+        driver::render(&diags, &a.parsed.sources, &driver::Options::default())
     );
-    let module = driver::lower(a);
+    let module = stc_pipeline::lower(a);
     let image = Arc::new(stc_vm::compile(&module).expect("compiles"));
     let mut m = stc_vm::Machine::new(image.clone());
     let inst = image

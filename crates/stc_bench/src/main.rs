@@ -129,24 +129,13 @@ fn main() {
         let (t, peak) = measure(Duration::from_secs(2), || {
             let mut sm = stc_diagnostics::SourceMap::new();
             sm.add("gen.st", src.clone());
-            let prelude = sm
-                .add("<stdlib>", stc_sema::prelude::source())
-                .map(|f| sm.file(f).span());
-            let mut interner = stc_syntax::Interner::new();
-            let (ast, diags) = stc_syntax::parse_project(&sm, &mut interner);
-            let analysis = stc_sema::analyze(
-                &ast,
-                &mut interner,
-                &sm,
-                prelude,
-                stc_sema::Options::default(),
-            );
+            let a = stc_pipeline::analyse(sm, Vec::new(), &stc_pipeline::Options::default());
             assert!(
-                diags.is_empty() && analysis.diagnostics.is_empty(),
+                a.diagnostics().next().is_none(),
                 "{:?}",
-                analysis.diagnostics.first()
+                a.diagnostics().next()
             );
-            (sm, interner, ast, analysis)
+            a
         });
         report("check", n, bytes, t, peak.saturating_sub(bytes));
     }

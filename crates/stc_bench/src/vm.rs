@@ -7,16 +7,39 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
-use stc::driver::{self, Options};
-
 fn kernels_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../bench/kernels")
 }
 
+/// A kernel's source (UTF-8 text) as a source map.
+fn load(st: &Path) -> Result<stc_diagnostics::SourceMap, String> {
+    let text = std::fs::read_to_string(st).map_err(|e| format!("{}: {e}", st.display()))?;
+    let mut sm = stc_diagnostics::SourceMap::new();
+    sm.add(st.display().to_string(), text);
+    Ok(sm)
+}
+
+/// Compiles a project to the IR, or gives its errors.
+fn compile(
+    sm: stc_diagnostics::SourceMap,
+    diags: Vec<stc_diagnostics::Diagnostic>,
+) -> Result<(stc_ir::Module, stc_diagnostics::SourceMap), String> {
+    let c = stc_pipeline::compile(sm, diags, &stc_pipeline::Options::default());
+    match c.module {
+        Some(m) => Ok((m, c.sources)),
+        None => Err(c
+            .diagnostics
+            .iter()
+            .filter(|d| d.is_error())
+            .map(|d| stc_diagnostics::render_human(d, &c.sources))
+            .collect::<Vec<_>>()
+            .join("\n")),
+    }
+}
+
 /// Nanoseconds per cycle of a kernel on the VM.
 fn vm_time(st: &Path, cycles: u64) -> Result<f64, String> {
-    let (sm, diags) = stc::sources::load(&[st.to_path_buf()]).map_err(|e| e.to_string())?;
-    vm_time_of(sm, diags, cycles, None)
+    vm_time_of(load(st)?, Vec::new(), cycles, None)
 }
 
 /// Nanoseconds per cycle of the first program of some sources; `start`
@@ -27,12 +50,8 @@ fn vm_time_of(
     cycles: u64,
     start: Option<&str>,
 ) -> Result<f64, String> {
-    let a = driver::analyse(sm, diags, &Options::default());
-    let all = a.all_diagnostics();
-    if all.iter().any(|d| d.is_error()) {
-        return Err(driver::render(&all, &a.parsed.sources, &Options::default()));
-    }
-    let image = Arc::new(stc_vm::compile(&driver::lower(a)).map_err(|e| e.to_string())?);
+    let (module, _) = compile(sm, diags)?;
+    let image = Arc::new(stc_vm::compile(&module).map_err(|e| e.to_string())?);
     let inst = image.programs.first().ok_or("no program")?.clone();
     let mut best = f64::MAX;
     for _ in 0..5 {
@@ -122,10 +141,16 @@ int main(int argc, char **argv) {
 fn gen_c_time(st: &Path, cycles: u64) -> Result<f64, String> {
     let stem = st.file_stem().and_then(|s| s.to_str()).unwrap_or("k");
     let dir = std::env::temp_dir().join(format!("stc-bench-gen-{stem}-{}", std::process::id()));
-    let (src, out) = (st.display().to_string(), dir.display().to_string());
-    let built = stc::cli::run_args(&["stc", "build", &src, "--emit", "c", "-o", &out]);
-    if built.status != 0 {
-        return Err(built.stderr.trim().to_string());
+    let (module, sources) = compile(load(st)?, Vec::new())?;
+    let locate = |sp: stc_diagnostics::Span| {
+        sources
+            .locate(sp.lo)
+            .map(|(f, lc)| (f.name.clone(), lc.line, lc.col))
+    };
+    let files = stc_codegen_c::generate(&module, &locate).map_err(|e| e.to_string())?;
+    std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
+    for (name, text) in files {
+        std::fs::write(dir.join(name), text).map_err(|e| e.to_string())?;
     }
     std::fs::write(dir.join("bench_main.c"), GEN_MAIN).map_err(|e| e.to_string())?;
     let exe = dir.join("bench");

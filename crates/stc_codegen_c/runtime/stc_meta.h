@@ -26,34 +26,10 @@
 #include <stddef.h>
 #include <stdint.h>
 
-/* Elementary types, in the order of stc_syntax::token::ElemType::ALL. */
-enum {
-    STC_E_BOOL = 0, STC_E_SINT, STC_E_INT, STC_E_DINT, STC_E_LINT,
-    STC_E_USINT, STC_E_UINT, STC_E_UDINT, STC_E_ULINT,
-    STC_E_REAL, STC_E_LREAL,
-    STC_E_BYTE, STC_E_WORD, STC_E_DWORD, STC_E_LWORD,
-    STC_E_TIME, STC_E_LTIME, STC_E_DATE, STC_E_LDATE, STC_E_TOD, STC_E_LTOD,
-    STC_E_DT, STC_E_LDT,
-    STC_E_STRING, STC_E_WSTRING, STC_E_CHAR, STC_E_WCHAR
-};
-
-/* Kinds of type descriptors (stc_vm::image::TypeDesc). */
-enum {
-    STC_TK_SCALAR = 0,   /* elem */
-    STC_TK_STRING,       /* wide, cap */
-    STC_TK_ENUM,         /* name, elem (base), values, count */
-    STC_TK_ARRAY,        /* elem_type, dims, count (of dims), stride */
-    STC_TK_STRUCT,       /* name (NULL when anonymous), members, count */
-    STC_TK_INSTANCE,     /* name (the POU), members (its variables), count */
-    STC_TK_SUBRANGE      /* elem (base), lo, hi */
-};
-
-/* Kinds of variables (stc_vm::image::VarKind). */
-enum {
-    STC_VK_INPUT = 0, STC_VK_OUTPUT, STC_VK_INOUT, STC_VK_VAR, STC_VK_TEMP,
-    STC_VK_EXTERNAL, STC_VK_GLOBAL, STC_VK_RESULT, STC_VK_HIDDEN,
-    STC_VK_FIELD         /* a member of a STRUCT */
-};
+/* The codes of elementary types (STC_E_*), type descriptor kinds
+   (STC_TK_*), variable kinds (STC_VK_*) and faults (STC_FAULT_*), written
+   from the Rust definitions. */
+#include "stc_codes.h"
 
 typedef struct {
     const char *name;       /* as declared */

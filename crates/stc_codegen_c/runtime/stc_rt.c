@@ -34,18 +34,20 @@ void stc_fault(uint32_t kind, uint32_t site)
 
 const char *stc_fault_text(uint32_t kind)
 {
-    static const char *const texts[8] = {
-        "no fault",
-        "division by zero",
-        "array index out of bounds",
-        "subrange violation",
-        "conversion failure",
-        "MUX selector out of range",
-        "FOR step of zero",
-        "watchdog"
+    /* The texts of stc_ir::FaultKind::text. */
+    static const char *const texts[STC_N_FAULT_KINDS] = {
+        [STC_FAULT_NONE] = "no fault",
+        [STC_FAULT_DIVISION_BY_ZERO] = "division by zero",
+        [STC_FAULT_INDEX] = "array index out of bounds",
+        [STC_FAULT_SUBRANGE] = "subrange violation",
+        [STC_FAULT_CONVERSION] = "conversion failure",
+        [STC_FAULT_MUX] = "MUX selector out of range",
+        [STC_FAULT_FOR_STEP_ZERO] = "FOR step of zero",
+        [STC_FAULT_WATCHDOG] = "watchdog",
+        [STC_FAULT_INVALID_CODE] = "invalid bytecode"
     };
     const char *t = "unknown fault";
-    if (kind < 8U) {
+    if ((kind < (uint32_t)STC_N_FAULT_KINDS) && (texts[kind] != NULL)) {
         t = texts[kind];
     }
     return t;

@@ -26,17 +26,8 @@
 
 /* ---- faults ---------------------------------------------------------- */
 
-/* Fault kinds; the texts `stc run` prints are in stc_fault_text(). */
-enum {
-    STC_FAULT_NONE = 0,
-    STC_FAULT_DIVISION_BY_ZERO,  /* "division by zero" */
-    STC_FAULT_INDEX,             /* "array index out of bounds" */
-    STC_FAULT_SUBRANGE,          /* "subrange violation" */
-    STC_FAULT_CONVERSION,        /* "conversion failure" */
-    STC_FAULT_MUX,               /* "MUX selector out of range" */
-    STC_FAULT_FOR_STEP_ZERO,     /* "FOR step of zero" */
-    STC_FAULT_WATCHDOG           /* "watchdog" */
-};
+/* Fault kinds: STC_FAULT_* of stc_codes.h; the texts `stc run` prints
+   are in stc_fault_text(). */
 
 /* The pending fault of the running cycle (STC_FAULT_NONE when none) and
    where it happened (an index in stc_sites). */

@@ -2359,16 +2359,9 @@ fn array_count(dims: &[(i128, i128)]) -> u64 {
         .clamp(1, u32::MAX as i128) as u64
 }
 
+/// The `STC_FAULT_*` code of a fault kind (one numbering with the VM).
 fn fault_code(k: FaultKind) -> u32 {
-    match k {
-        FaultKind::DivisionByZero => 1,
-        FaultKind::IndexOutOfBounds => 2,
-        FaultKind::SubrangeViolation => 3,
-        FaultKind::Conversion => 4,
-        FaultKind::MuxRange => 5,
-        FaultKind::ForStepZero => 6,
-        FaultKind::Watchdog | FaultKind::InvalidCode => 7,
-    }
+    u32::from(k.code())
 }
 
 /// A C string literal of ST text (bytes outside ASCII as octal escapes).

@@ -36,6 +36,7 @@
 //!   image's tables: the real-time harness schedules tasks from them, and
 //!   `stc_engine_c` reads them as the program model of the C engine.
 
+pub mod codes;
 pub mod ops;
 
 mod gen;
@@ -104,7 +105,7 @@ CC ?= cc
 CFLAGS ?= -std=c99 -O2 -Wall -Wextra -pedantic
 IO ?= stc_io.c
 RT_SRC = program.c stc_rt.c stc_rt_main.c stc_port_posix.c $(IO)
-HEADERS = program.h stc_rt.h stc_gen.h stc_meta.h
+HEADERS = program.h stc_rt.h stc_gen.h stc_meta.h stc_codes.h
 
 rt: $(RT_SRC) $(HEADERS) stc_port.h stc_io.h
 \t$(CC) $(CFLAGS) -I. -DSTC_WATCHDOG -pthread -o rt $(RT_SRC) -lm
@@ -127,6 +128,7 @@ pub fn generate(m: &Module, locate: Locate<'_>) -> Result<Vec<(String, String)>,
         ("program.h".to_string(), p.header),
         ("program.c".to_string(), p.source),
         ("Makefile".to_string(), MAKEFILE.to_string()),
+        ("stc_codes.h".to_string(), codes::header()),
     ];
     for (name, text) in RUNTIME {
         files.push((name.to_string(), text.to_string()));

@@ -59,10 +59,10 @@ pub fn elem_c(e: ElemType) -> &'static str {
     }
 }
 
-/// The `enum stc_elem` code of an elementary type (its index in
-/// `ElemType::ALL`, which stc_meta.h follows).
+/// The `STC_E_*` code of an elementary type (`ElemType::code`, written
+/// into `stc_codes.h`).
 pub fn elem_code(e: ElemType) -> u32 {
-    ElemType::ALL.iter().position(|&x| x == e).unwrap_or(0) as u32
+    u32::from(e.code())
 }
 
 /// The C name of a type (a typedef for strings, arrays, structs and

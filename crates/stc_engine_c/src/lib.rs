@@ -163,18 +163,9 @@ impl CEngine {
     }
 }
 
-/// The fault kinds of `stc_rt.h` (`STC_FAULT_*`).
+/// A fault code of `stc_codes.h` (`STC_FAULT_*`: [`FaultKind::code`]).
 fn fault_kind(code: u32) -> FaultKind {
-    match code {
-        1 => FaultKind::DivisionByZero,
-        2 => FaultKind::IndexOutOfBounds,
-        3 => FaultKind::SubrangeViolation,
-        4 => FaultKind::Conversion,
-        5 => FaultKind::MuxRange,
-        6 => FaultKind::ForStepZero,
-        7 => FaultKind::Watchdog,
-        _ => FaultKind::InvalidCode,
-    }
+    FaultKind::from_code(code).unwrap_or(FaultKind::InvalidCode)
 }
 
 impl Memory for CEngine {

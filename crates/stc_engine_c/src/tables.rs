@@ -12,7 +12,7 @@ use stc_syntax::literal::{parse_address, DirectAddress};
 use stc_syntax::token::ElemType;
 use stc_vm::image::{
     ConfigDesc, FieldDesc, GlobalDesc, Image, IoSlot, PouCode, PouKind, ProgramInst, ResourceDesc,
-    Source, TaskDesc, TypeDesc, TypeRef, VarDesc, VarKind,
+    Source, TaskDesc, TypeDesc, TypeDescKind as K, TypeRef, VarDesc, VarKind,
 };
 
 use crate::memory::{RegionBuilder, Regions};
@@ -259,20 +259,16 @@ impl Tables {
         let mut types = Vec::with_capacity(self.types.len());
         let mut pous = Vec::new();
         for (i, t) in self.types.iter().enumerate() {
-            let elem = || {
-                ElemType::ALL
-                    .get(t.elem as usize)
-                    .copied()
-                    .ok_or_else(|| bad("an unknown elementary type"))
-            };
+            let elem =
+                || ElemType::from_code(t.elem).ok_or_else(|| bad("an unknown elementary type"));
             let u32_of = |n: usize| u32::try_from(n).map_err(|_| bad("a size over 4 GiB"));
-            types.push(match t.kind {
-                0 => TypeDesc::Scalar(elem()?),
-                1 => TypeDesc::String {
+            types.push(match K::from_code(t.kind) {
+                Some(K::Scalar) => TypeDesc::Scalar(elem()?),
+                Some(K::String) => TypeDesc::String {
                     wide: t.wide != 0,
                     cap: t.cap,
                 },
-                2 => TypeDesc::Enum {
+                Some(K::Enum) => TypeDesc::Enum {
                     name: text(t.name).unwrap_or_default(),
                     base: elem()?,
                     values: table(t.values, t.count)
@@ -280,7 +276,7 @@ impl Tables {
                         .map(|v| (text(v.name).unwrap_or_default(), v.value as i128))
                         .collect(),
                 },
-                3 => TypeDesc::Array {
+                Some(K::Array) => TypeDesc::Array {
                     elem: t.elem_type,
                     dims: table(t.dims, t.count)
                         .iter()
@@ -288,7 +284,7 @@ impl Tables {
                         .collect(),
                     stride: u32_of(t.stride)?,
                 },
-                4 => TypeDesc::Struct {
+                Some(K::Struct) => TypeDesc::Struct {
                     name: text(t.name),
                     fields: table(t.members, t.count)
                         .iter()
@@ -301,7 +297,7 @@ impl Tables {
                         })
                         .collect::<Result<_, Error>>()?,
                 },
-                5 => {
+                Some(K::Instance) => {
                     let vars = table(t.members, t.count)
                         .iter()
                         .map(|m| var(m).ok_or_else(|| bad("a variable of an unknown kind")))
@@ -324,12 +320,12 @@ impl Tables {
                     });
                     TypeDesc::Instance { pou }
                 }
-                6 => TypeDesc::Subrange {
+                Some(K::Subrange) => TypeDesc::Subrange {
                     base: elem()?,
                     lo: t.lo as i128,
                     hi: t.hi as i128,
                 },
-                _ => return Err(bad("an unknown kind of type")),
+                None => return Err(bad("an unknown kind of type")),
             });
         }
         let pou_of = |ty: u32| -> Result<u32, Error> {
@@ -475,18 +471,7 @@ unsafe fn location(p: *const c_char) -> Option<DirectAddress> {
 /// # Safety
 /// The member's strings are the library's.
 unsafe fn var(m: &CMember) -> Option<VarDesc> {
-    let kind = match m.kind {
-        0 => VarKind::Input,
-        1 => VarKind::Output,
-        2 => VarKind::InOut,
-        3 => VarKind::Var,
-        4 => VarKind::Temp,
-        5 => VarKind::External,
-        6 => VarKind::Global,
-        7 => VarKind::Result,
-        8 => VarKind::Hidden,
-        _ => return None,
-    };
+    let kind = VarKind::from_code(m.kind)?;
     Some(VarDesc {
         name: text(m.name).unwrap_or_default(),
         ty: m.ty,

@@ -162,11 +162,7 @@ impl Module {
 
     /// The type of an elementary type name (not STRING/WSTRING).
     pub fn types_elem(&self, e: stc_syntax::token::ElemType) -> TypeId {
-        let i = stc_syntax::token::ElemType::ALL
-            .iter()
-            .position(|&x| x == e)
-            .unwrap_or(0);
-        TypeId(2 + i as u32)
+        TypeId::of_elem(e)
     }
 
     /// The type a direct address has when no declared variable gives it
@@ -336,21 +332,50 @@ pub struct SwitchArm {
     pub body: Vec<Stmt>,
 }
 
+/// A run-time fault.
+///
+/// The explicit values are the one numbering of faults: the operand of the
+/// VM's `fault` instruction (so a byte of `.stbc` files) and the
+/// `STC_FAULT_*` codes of the generated C (`stc_codes.h`), where 0 is
+/// `STC_FAULT_NONE`. Never renumber a kind.
 #[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
+#[repr(u8)]
 pub enum FaultKind {
-    DivisionByZero,
-    IndexOutOfBounds,
-    SubrangeViolation,
-    Conversion,
-    MuxRange,
-    ForStepZero,
-    Watchdog,
+    DivisionByZero = 1,
+    IndexOutOfBounds = 2,
+    SubrangeViolation = 3,
+    Conversion = 4,
+    MuxRange = 5,
+    ForStepZero = 6,
+    Watchdog = 7,
     /// Bytecode that tried to leave its memory (only a corrupt or hostile
     /// program file can; the verifier rejects them before they run).
-    InvalidCode,
+    InvalidCode = 8,
 }
 
 impl FaultKind {
+    /// Every kind, in the order of their codes.
+    pub const ALL: [FaultKind; 8] = [
+        FaultKind::DivisionByZero,
+        FaultKind::IndexOutOfBounds,
+        FaultKind::SubrangeViolation,
+        FaultKind::Conversion,
+        FaultKind::MuxRange,
+        FaultKind::ForStepZero,
+        FaultKind::Watchdog,
+        FaultKind::InvalidCode,
+    ];
+
+    /// The kind's stable code (see the type's documentation).
+    pub const fn code(self) -> u8 {
+        self as u8
+    }
+
+    /// The kind of a code; `None` for 0 (no fault) and unknown values.
+    pub fn from_code(code: u32) -> Option<FaultKind> {
+        Self::ALL.into_iter().find(|k| u32::from(k.code()) == code)
+    }
+
     /// The fault's name in `fault: KIND in POU at FILE:LINE:COL`.
     pub fn text(self) -> &'static str {
         match self {

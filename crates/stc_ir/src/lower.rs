@@ -290,8 +290,7 @@ impl<'a> Lowerer<'a> {
 
     /// The TypeId of an elementary type (the table pre-allocates them).
     fn elem_ty(&self, e: ElemType) -> TypeId {
-        let i = ElemType::ALL.iter().position(|&x| x == e).unwrap_or(0);
-        TypeId(2 + i as u32)
+        TypeId::of_elem(e)
     }
 
     fn line_col(&self, span: Span) -> (u32, u32) {

@@ -102,7 +102,7 @@ fn vm_and_c_back_end_agree_on_generated_programs() {
     match &report.c {
         CSide::Unavailable(why) => {
             eprintln!(
-                "note: differential test skipped, C back end unavailable: {}",
+                "note: differential test skipped, the C side cannot run: {}",
                 why.lines().next().unwrap_or("")
             );
             return;

@@ -138,20 +138,9 @@ fn is_number_type(e: ElemType) -> bool {
 }
 
 /// A REAL (`single`) or LREAL as JSON: the shortest round-trip number, or
-/// the strings "NaN", "INF", "-INF".
+/// the strings "NaN", "INF", "-INF" ([`stc_syntax::real::json`]).
 pub fn json_real(x: f64, single: bool) -> String {
-    if x.is_nan() {
-        return "\"NaN\"".into();
-    }
-    if x.is_infinite() {
-        return if x > 0.0 { "\"INF\"" } else { "\"-INF\"" }.into();
-    }
-    let text = if single {
-        serde_json::to_string(&(x as f32))
-    } else {
-        serde_json::to_string(&x)
-    };
-    text.unwrap_or_else(|_| "null".into())
+    stc_syntax::real::json(x, single)
 }
 
 /// Appends the JSON form of a value (spec/cli.md).

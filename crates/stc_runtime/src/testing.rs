@@ -134,7 +134,9 @@ pub fn empty() -> Image {
                 c: Op::this(2),
                 t: Tgt(3),
             },
-            Instr::Fault { kind: 0 },
+            Instr::Fault {
+                kind: u32::from(stc_ir::FaultKind::DivisionByZero.code()),
+            },
             Instr::Ret {},
         ],
         consts: Vec::new(),

@@ -204,7 +204,7 @@ impl<'a> Sema<'a> {
             }
             self.call_edges.push((p, fb, callee_span));
         }
-        let (bound, en, eno) = self.bind_args(e, fb, args, scope, callee_span);
+        let (bound, en, eno) = self.bind_args(fb, args, scope, callee_span);
         self.calls.insert(
             e,
             CallInfo {
@@ -236,7 +236,7 @@ impl<'a> Sema<'a> {
         if let Scope::Pou(p) = scope {
             self.call_edges.push((p, q, span));
         }
-        let (bound, en, eno) = self.bind_args(e, q, args, scope, span);
+        let (bound, en, eno) = self.bind_args(q, args, scope, span);
         self.calls.insert(
             e,
             CallInfo {
@@ -254,7 +254,6 @@ impl<'a> Sema<'a> {
     #[allow(clippy::type_complexity)]
     fn bind_args(
         &mut self,
-        _e: ExprId,
         q: PouId,
         args: &'a [Arg],
         scope: Scope,

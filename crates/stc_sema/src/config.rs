@@ -1,6 +1,6 @@
 //! Configurations, resources, tasks and program instances.
 
-use stc_diagnostics::{Code, Diagnostic, Span};
+use stc_diagnostics::{Code, Diagnostic};
 use stc_syntax::ast::{
     Configuration, ExprId, ExprKind, Item, PouKind, ProgramConn, Resource, VarKind,
 };
@@ -395,10 +395,5 @@ impl<'a> Sema<'a> {
                 _ => None,
             },
         }
-    }
-
-    #[allow(dead_code)]
-    fn span_of(&self, e: ExprId) -> Span {
-        self.ast.expr(e).span
     }
 }

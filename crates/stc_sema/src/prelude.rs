@@ -1,6 +1,6 @@
 //! The standard function blocks, written in Structured Text.
 //!
-//! The driver parses this text together with the user's files (as the file
+//! `stc_pipeline` parses this text together with the user's files (as the file
 //! `<stdlib>`), so the blocks are ordinary POUs to every later phase: their
 //! semantics (spec/semantics.md, "Standard function blocks") are written once
 //! and every back end runs exactly this code. Timers read the task clock with

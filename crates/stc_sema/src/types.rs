@@ -25,6 +25,16 @@ impl TypeId {
     pub const ERROR: TypeId = TypeId(0);
     /// The "result" of a function without a return type.
     pub const VOID: TypeId = TypeId(1);
+    /// The first elementary type: every type table holds the elementary
+    /// types at `FIRST_ELEM + ElemType::code()` (see [`TypeTable::new`]).
+    pub const FIRST_ELEM: u32 = 2;
+
+    /// The pre-allocated entry of an elementary type in every table (for
+    /// STRING and WSTRING, the entry without a length; sized strings have
+    /// their own, see [`TypeTable::elem`]).
+    pub const fn of_elem(e: ElemType) -> TypeId {
+        TypeId(Self::FIRST_ELEM + e.code() as u32)
+    }
 }
 
 pub const DEFAULT_STRING_LEN: u32 = 80;
@@ -128,7 +138,8 @@ impl TypeTable {
         t.add(TypeKind::Error, None, None);
         t.add(TypeKind::Void, None, None);
         for &e in ElemType::ALL {
-            t.add(TypeKind::Elem(e), None, None);
+            let id = t.add(TypeKind::Elem(e), None, None);
+            assert_eq!(id, TypeId::of_elem(e), "ElemType codes are dense");
         }
         t
     }
@@ -156,10 +167,7 @@ impl TypeTable {
         match e {
             ElemType::String => self.string(false, DEFAULT_STRING_LEN),
             ElemType::Wstring => self.string(true, DEFAULT_STRING_LEN),
-            _ => {
-                let i = ElemType::ALL.iter().position(|&x| x == e).unwrap_or(0);
-                TypeId(2 + i as u32)
-            }
+            _ => TypeId::of_elem(e),
         }
     }
 

@@ -13,6 +13,7 @@ pub mod lexer;
 pub mod literal;
 pub mod parser;
 pub mod print;
+pub mod real;
 pub mod token;
 
 pub use intern::{Interner, Symbol};

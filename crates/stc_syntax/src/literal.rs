@@ -712,21 +712,10 @@ pub fn format_dt(ns: i64, long: bool) -> String {
 }
 
 /// A REAL/LREAL value as literal text that reads back to the same value
-/// (always with a `.`; exponent in `E` form).
+/// (always with a `.`; exponent in `E` form): [`crate::real::text`] of the
+/// value as an f64.
 pub fn format_real(v: f64) -> String {
-    let s = format!("{v:?}");
-    // Debug gives the shortest round-trip form: `1.0`, `1e-10`, `1.5e20`.
-    match s.split_once('e') {
-        Some((m, e)) => {
-            let m = if m.contains('.') {
-                m.to_string()
-            } else {
-                format!("{m}.0")
-            };
-            format!("{m}E{e}")
-        }
-        None => s,
-    }
+    crate::real::text(v, false)
 }
 
 /// A string as an ST literal with escapes (`'it$'s'`).

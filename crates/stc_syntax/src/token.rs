@@ -146,10 +146,10 @@ impl TokenKind {
 }
 
 macro_rules! word_enum {
-    ($(#[$m:meta])* $name:ident { $($variant:ident = $text:literal $(| $alias:literal)*,)* }) => {
+    ($(#[$m:meta])* $name:ident { $($variant:ident $(($code:literal))? = $text:literal $(| $alias:literal)*,)* }) => {
         $(#[$m])*
         #[derive(Clone, Copy, PartialEq, Eq, Debug, Hash, PartialOrd, Ord)]
-        pub enum $name { $($variant,)* }
+        pub enum $name { $($variant $(= $code)?,)* }
 
         impl $name {
             pub const ALL: &'static [$name] = &[$($name::$variant,)*];
@@ -173,34 +173,54 @@ macro_rules! word_enum {
 
 word_enum! {
     /// The elementary data types (spec/semantics.md, Types).
+    ///
+    /// The explicit values are a file format and an ABI: the byte stored
+    /// for an elementary type in `.stbc` files, the `STC_E_*` codes of the
+    /// generated C (`stc_codes.h`), and the order of the elementary types
+    /// in every type table (`stc_sema::types::elem_type_id`). Never
+    /// renumber a type; a new one takes the next free value (and the
+    /// `.stbc` version is bumped if the meaning of a byte changes).
+    #[repr(u8)]
     ElemType {
-        Bool = "BOOL",
-        Sint = "SINT",
-        Int = "INT",
-        Dint = "DINT",
-        Lint = "LINT",
-        Usint = "USINT",
-        Uint = "UINT",
-        Udint = "UDINT",
-        Ulint = "ULINT",
-        Real = "REAL",
-        Lreal = "LREAL",
-        Byte = "BYTE",
-        Word = "WORD",
-        Dword = "DWORD",
-        Lword = "LWORD",
-        Time = "TIME",
-        Ltime = "LTIME",
-        Date = "DATE",
-        Ldate = "LDATE",
-        Tod = "TOD" | "TIME_OF_DAY",
-        Ltod = "LTOD" | "LTIME_OF_DAY",
-        Dt = "DT" | "DATE_AND_TIME",
-        Ldt = "LDT" | "LDATE_AND_TIME",
-        String = "STRING",
-        Wstring = "WSTRING",
-        Char = "CHAR",
-        Wchar = "WCHAR",
+        Bool(0) = "BOOL",
+        Sint(1) = "SINT",
+        Int(2) = "INT",
+        Dint(3) = "DINT",
+        Lint(4) = "LINT",
+        Usint(5) = "USINT",
+        Uint(6) = "UINT",
+        Udint(7) = "UDINT",
+        Ulint(8) = "ULINT",
+        Real(9) = "REAL",
+        Lreal(10) = "LREAL",
+        Byte(11) = "BYTE",
+        Word(12) = "WORD",
+        Dword(13) = "DWORD",
+        Lword(14) = "LWORD",
+        Time(15) = "TIME",
+        Ltime(16) = "LTIME",
+        Date(17) = "DATE",
+        Ldate(18) = "LDATE",
+        Tod(19) = "TOD" | "TIME_OF_DAY",
+        Ltod(20) = "LTOD" | "LTIME_OF_DAY",
+        Dt(21) = "DT" | "DATE_AND_TIME",
+        Ldt(22) = "LDT" | "LDATE_AND_TIME",
+        String(23) = "STRING",
+        Wstring(24) = "WSTRING",
+        Char(25) = "CHAR",
+        Wchar(26) = "WCHAR",
+    }
+}
+
+impl ElemType {
+    /// The type's stable code (see the type's documentation).
+    pub const fn code(self) -> u8 {
+        self as u8
+    }
+
+    /// The type of a code; `None` for a value no type has.
+    pub fn from_code(code: u8) -> Option<ElemType> {
+        Self::ALL.iter().copied().find(|e| e.code() == code)
     }
 }
 
@@ -382,6 +402,18 @@ fn word_table() -> &'static WordTable {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The codes are dense and in the order of `ALL` (type tables put the
+    /// elementary types at `first + code`), and read back.
+    #[test]
+    fn elem_codes_are_dense_and_read_back() {
+        for (i, &e) in ElemType::ALL.iter().enumerate() {
+            assert_eq!(usize::from(e.code()), i, "{e:?}");
+            assert_eq!(ElemType::from_code(e.code()), Some(e));
+        }
+        assert_eq!(ElemType::from_code(ElemType::ALL.len() as u8), None);
+        assert_eq!(ElemType::from_code(u8::MAX), None);
+    }
 
     #[test]
     fn words_classify_by_upper_case_spelling() {

@@ -10,7 +10,7 @@
 use crate::types::{int_range, is_date, is_dt, is_duration, is_int_like, is_real, is_tod};
 use crate::{misuse, Fault, Value};
 use stc_syntax::literal::{
-    cp1252_decode, cp1252_encode, format_date, format_dt, format_duration, format_real, format_tod,
+    cp1252_decode, cp1252_encode, format_date, format_dt, format_duration, format_tod,
     parse_based_int, parse_date, parse_dt, parse_duration, parse_int, parse_tod,
 };
 use stc_syntax::token::{ElemType, TokenKind};
@@ -81,17 +81,7 @@ fn real_text(x: f64, single: bool) -> String {
     if x.is_infinite() {
         return if x > 0.0 { "INF" } else { "-INF" }.into();
     }
-    if single {
-        // The shortest f32 digits, read as an f64, print as those same
-        // digits (at most 9 significant digits round-trip through f64).
-        let digits = format!("{:?}", x as f32);
-        match digits.parse::<f64>() {
-            Ok(y) => format_real(y),
-            Err(_) => format_real(x),
-        }
-    } else {
-        format_real(x)
-    }
+    stc_syntax::real::text(x, single)
 }
 
 /// Truncates a string value to at most `len` characters (bytes of a

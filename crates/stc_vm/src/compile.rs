@@ -57,31 +57,15 @@ fn too_large(span: Span, what: String, size: u64) -> CompileError {
     .with_label("too large for the memory model")])
 }
 
-/// A fault kind's code in `fault` instructions.
+/// A fault kind's code in `fault` instructions ([`FaultKind::code`]).
 pub fn fault_code(k: FaultKind) -> u32 {
-    match k {
-        FaultKind::DivisionByZero => 0,
-        FaultKind::IndexOutOfBounds => 1,
-        FaultKind::SubrangeViolation => 2,
-        FaultKind::Conversion => 3,
-        FaultKind::MuxRange => 4,
-        FaultKind::ForStepZero => 5,
-        FaultKind::Watchdog => 6,
-        FaultKind::InvalidCode => 7,
-    }
+    u32::from(k.code())
 }
 
+/// The kind of a `fault` instruction's code (an unknown code, which the
+/// verifier rejects, is invalid code).
 pub fn fault_of_code(c: u32) -> FaultKind {
-    match c {
-        0 => FaultKind::DivisionByZero,
-        1 => FaultKind::IndexOutOfBounds,
-        2 => FaultKind::SubrangeViolation,
-        3 => FaultKind::Conversion,
-        4 => FaultKind::MuxRange,
-        5 => FaultKind::ForStepZero,
-        6 => FaultKind::Watchdog,
-        _ => FaultKind::InvalidCode,
-    }
+    FaultKind::from_code(c).unwrap_or(FaultKind::InvalidCode)
 }
 
 /// Where a value is: at an operand, behind a pointer held in a temporary,

@@ -14,7 +14,10 @@ use crate::image::*;
 use crate::instr::{Instr, Op};
 
 pub const MAGIC: &[u8; 4] = b"STBC";
-pub const VERSION: u32 = 1;
+/// The format version. 2: elementary types, variable, POU and type kinds,
+/// scalar kinds and fault codes are stored by their explicit codes (faults
+/// 1-based), standard functions by name.
+pub const VERSION: u32 = 2;
 
 #[derive(Debug, thiserror::Error, PartialEq, Eq)]
 pub enum LoadError {
@@ -110,7 +113,7 @@ impl Writer {
         w.seq(&img.types, |w, t| w.type_desc(t));
         w.seq(&img.pous, |w, p| {
             w.str(&p.name);
-            w.u8(p.kind as u8);
+            w.u8(p.kind.code());
             w.u32(p.entry);
             w.u32(p.instance_size);
             w.u32(p.frame_size);
@@ -121,7 +124,7 @@ impl Writer {
             w.seq(&p.vars, |w, v| {
                 w.str(&v.name);
                 w.u32(v.ty);
-                w.u8(v.kind as u8);
+                w.u8(v.kind.code());
                 w.u32(v.offset);
                 w.u8(v.in_frame as u8);
                 w.u8(v.is_ref as u8);
@@ -212,21 +215,17 @@ impl Writer {
         }
     }
     fn elem(&mut self, e: ElemType) {
-        self.u8(ElemType::ALL.iter().position(|&x| x == e).unwrap_or(0) as u8);
+        self.u8(e.code());
     }
     fn type_desc(&mut self, t: &TypeDesc) {
+        self.u8(t.kind().code());
         match t {
-            TypeDesc::Scalar(e) => {
-                self.u8(0);
-                self.elem(*e);
-            }
+            TypeDesc::Scalar(e) => self.elem(*e),
             TypeDesc::String { wide, cap } => {
-                self.u8(1);
                 self.u8(*wide as u8);
                 self.u32(*cap);
             }
             TypeDesc::Enum { name, base, values } => {
-                self.u8(2);
                 self.str(name);
                 self.elem(*base);
                 self.seq(values, |w, (n, v)| {
@@ -235,7 +234,6 @@ impl Writer {
                 });
             }
             TypeDesc::Array { elem, dims, stride } => {
-                self.u8(3);
                 self.u32(*elem);
                 self.seq(dims, |w, (l, h)| {
                     w.u64(*l as u64);
@@ -244,7 +242,6 @@ impl Writer {
                 self.u32(*stride);
             }
             TypeDesc::Struct { name, fields } => {
-                self.u8(4);
                 self.opt(name, |w, n| w.str(n));
                 self.seq(fields, |w, f| {
                     w.str(&f.name);
@@ -253,11 +250,9 @@ impl Writer {
                 });
             }
             TypeDesc::Instance { pou } => {
-                self.u8(5);
                 self.u32(*pou);
             }
             TypeDesc::Subrange { base, lo, hi } => {
-                self.u8(6);
                 self.elem(*base);
                 self.i128(*lo);
                 self.i128(*hi);
@@ -302,10 +297,10 @@ impl Writer {
         match op {
             StdOp::Call(f) => {
                 self.u8(0);
-                let (code, a, b) = intrinsic_code(f);
-                self.u32(code);
+                let (name, a, b) = intrinsic_name(f);
+                self.str(name);
                 self.elem(a);
-                self.elem(b);
+                self.opt(&b, |w, b| w.elem(*b));
             }
             StdOp::Binary(b) => {
                 self.u8(1);
@@ -347,57 +342,39 @@ const BINOPS: [stc_values::BinOp; 15] = {
     ]
 };
 
-/// Intrinsics are stored by their name in the standard-function table
-/// (stable across versions), with the types of the conversion families.
-fn intrinsic_code(f: &stc_values::Intrinsic) -> (u32, ElemType, ElemType) {
+/// An intrinsic is stored as the name of a standard function that calls it
+/// (with the types of the conversion families), so the order of the
+/// standard-function table is not part of the format.
+fn intrinsic_name(f: &stc_values::Intrinsic) -> (&'static str, ElemType, Option<ElemType>) {
     use stc_values::Intrinsic as I;
     let (a, b) = match f {
         I::Convert { from, to } | I::BcdToInt { from, to } | I::IntToBcd { from, to } => {
-            (*from, *to)
+            (*from, Some(*to))
         }
-        I::Trunc { from, to } => (*from, to.unwrap_or(ElemType::Dint)),
-        _ => (ElemType::Bool, ElemType::Bool),
+        I::Trunc { from, to } => (*from, *to),
+        _ => (ElemType::Bool, None),
     };
-    let code = intrinsic_table()
-        .iter()
-        .position(|x| std::mem::discriminant(x) == std::mem::discriminant(f))
-        .unwrap_or(0);
-    (code as u32, a, b)
+    let same = |x: &stc_values::Intrinsic| std::mem::discriminant(x) == std::mem::discriminant(f);
+    let name = stc_values::all()
+        .into_iter()
+        .find(|s| same(&s.intrinsic))
+        .map(|s| s.name)
+        .or_else(|| {
+            ["INT_TO_REAL", "TRUNC", "BCD_TO_INT", "INT_TO_BCD"]
+                .into_iter()
+                .find(|n| stc_values::lookup(n).is_some_and(|s| same(&s.intrinsic)))
+        })
+        .unwrap_or("");
+    (name, a, b)
 }
 
-/// One representative of every intrinsic, in a fixed order.
-fn intrinsic_table() -> Vec<stc_values::Intrinsic> {
-    let mut out: Vec<stc_values::Intrinsic> = Vec::new();
-    let mut push = |f: stc_values::Intrinsic| {
-        if !out
-            .iter()
-            .any(|x| std::mem::discriminant(x) == std::mem::discriminant(&f))
-        {
-            out.push(f);
-        }
-    };
-    for f in stc_values::all() {
-        push(f.intrinsic);
-    }
-    for name in ["INT_TO_REAL", "TRUNC", "BCD_TO_INT", "INT_TO_BCD"] {
-        if let Some(f) = stc_values::lookup(name) {
-            push(f.intrinsic);
-        }
-    }
-    out
-}
-
-fn intrinsic_from(code: u32, a: ElemType, b: ElemType) -> Option<stc_values::Intrinsic> {
+fn intrinsic_from(name: &str, a: ElemType, b: Option<ElemType>) -> Option<stc_values::Intrinsic> {
     use stc_values::Intrinsic as I;
-    let f = *intrinsic_table().get(code as usize)?;
-    Some(match f {
-        I::Convert { .. } => I::Convert { from: a, to: b },
-        I::BcdToInt { .. } => I::BcdToInt { from: a, to: b },
-        I::IntToBcd { .. } => I::IntToBcd { from: a, to: b },
-        I::Trunc { .. } => I::Trunc {
-            from: a,
-            to: Some(b),
-        },
+    Some(match stc_values::lookup(name)?.intrinsic {
+        I::Convert { .. } => I::Convert { from: a, to: b? },
+        I::BcdToInt { .. } => I::BcdToInt { from: a, to: b? },
+        I::IntToBcd { .. } => I::IntToBcd { from: a, to: b? },
+        I::Trunc { .. } => I::Trunc { from: a, to: b },
         other => other,
     })
 }
@@ -488,30 +465,29 @@ impl Reader<'_> {
         }
     }
     fn elem(&mut self) -> Result<ElemType, LoadError> {
-        let i = self.u8()?;
-        ElemType::ALL
-            .get(i as usize)
-            .copied()
-            .ok_or_else(|| self.err("an unknown elementary type"))
+        let c = self.u8()?;
+        ElemType::from_code(c).ok_or_else(|| self.err("an unknown elementary type"))
     }
     fn type_desc(&mut self) -> Result<TypeDesc, LoadError> {
-        Ok(match self.u8()? {
-            0 => TypeDesc::Scalar(self.elem()?),
-            1 => TypeDesc::String {
+        let c = self.u8()?;
+        let kind = TypeDescKind::from_code(c).ok_or_else(|| self.err("an unknown type kind"))?;
+        Ok(match kind {
+            TypeDescKind::Scalar => TypeDesc::Scalar(self.elem()?),
+            TypeDescKind::String => TypeDesc::String {
                 wide: self.bool()?,
                 cap: self.u32()?,
             },
-            2 => TypeDesc::Enum {
+            TypeDescKind::Enum => TypeDesc::Enum {
                 name: self.str()?,
                 base: self.elem()?,
                 values: self.seq(|r| Ok((r.str()?, r.i128()?)))?,
             },
-            3 => TypeDesc::Array {
+            TypeDescKind::Array => TypeDesc::Array {
                 elem: self.u32()?,
                 dims: self.seq(|r| Ok((r.u64()? as i64, r.u64()? as i64)))?,
                 stride: self.u32()?,
             },
-            4 => TypeDesc::Struct {
+            TypeDescKind::Struct => TypeDesc::Struct {
                 name: self.opt(|r| r.str())?,
                 fields: self.seq(|r| {
                     Ok(FieldDesc {
@@ -521,13 +497,12 @@ impl Reader<'_> {
                     })
                 })?,
             },
-            5 => TypeDesc::Instance { pou: self.u32()? },
-            6 => TypeDesc::Subrange {
+            TypeDescKind::Instance => TypeDesc::Instance { pou: self.u32()? },
+            TypeDescKind::Subrange => TypeDesc::Subrange {
                 base: self.elem()?,
                 lo: self.i128()?,
                 hi: self.i128()?,
             },
-            _ => return Err(self.err("an unknown type kind")),
         })
     }
     fn address(&mut self) -> Result<DirectAddress, LoadError> {
@@ -574,9 +549,9 @@ impl Reader<'_> {
     fn std_op(&mut self) -> Result<StdOp, LoadError> {
         Ok(match self.u8()? {
             0 => {
-                let (code, a, b) = (self.u32()?, self.elem()?, self.elem()?);
+                let (name, a, b) = (self.str()?, self.elem()?, self.opt(|r| r.elem())?);
                 StdOp::Call(
-                    intrinsic_from(code, a, b)
+                    intrinsic_from(&name, a, b)
                         .ok_or_else(|| self.err("an unknown standard function"))?,
                 )
             }
@@ -629,11 +604,9 @@ impl Reader<'_> {
         let pous = self.seq(|r| {
             Ok(PouCode {
                 name: r.str()?,
-                kind: match r.u8()? {
-                    0 => PouKind::Function,
-                    1 => PouKind::FunctionBlock,
-                    2 => PouKind::Program,
-                    _ => return Err(r.err("an unknown POU kind")),
+                kind: {
+                    let c = r.u8()?;
+                    PouKind::from_code(c).ok_or_else(|| r.err("an unknown POU kind"))?
                 },
                 entry: r.u32()?,
                 instance_size: r.u32()?,
@@ -645,17 +618,10 @@ impl Reader<'_> {
                     Ok(VarDesc {
                         name: r.str()?,
                         ty: r.u32()?,
-                        kind: match r.u8()? {
-                            0 => VarKind::Input,
-                            1 => VarKind::Output,
-                            2 => VarKind::InOut,
-                            3 => VarKind::Var,
-                            4 => VarKind::Temp,
-                            5 => VarKind::External,
-                            6 => VarKind::Global,
-                            7 => VarKind::Result,
-                            8 => VarKind::Hidden,
-                            _ => return Err(r.err("an unknown variable kind")),
+                        kind: {
+                            let c = r.u8()?;
+                            VarKind::from_code(c)
+                                .ok_or_else(|| r.err("an unknown variable kind"))?
                         },
                         offset: r.u32()?,
                         in_frame: r.bool()?,
@@ -749,5 +715,59 @@ impl Reader<'_> {
             lines,
             files,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_standard_function_round_trips_by_name() {
+        for f in stc_values::all() {
+            let (name, a, b) = intrinsic_name(&f.intrinsic);
+            assert!(!name.is_empty(), "{}", f.name);
+            assert_eq!(intrinsic_from(name, a, b), Some(f.intrinsic), "{}", f.name);
+        }
+        for n in [
+            "INT_TO_REAL",
+            "LREAL_TO_UDINT",
+            "TRUNC",
+            "BCD_TO_INT",
+            "INT_TO_BCD",
+        ] {
+            let f = stc_values::lookup(n)
+                .expect("a standard function")
+                .intrinsic;
+            let (name, a, b) = intrinsic_name(&f);
+            assert_eq!(intrinsic_from(name, a, b), Some(f), "{n}");
+        }
+        assert_eq!(
+            intrinsic_from("NO_SUCH_FUNCTION", ElemType::Bool, None),
+            None
+        );
+    }
+
+    #[test]
+    fn coded_enums_read_back_and_reject_unknown_values() {
+        for &k in VarKind::ALL {
+            assert_eq!(VarKind::from_code(k.code()), Some(k));
+        }
+        for &k in PouKind::ALL {
+            assert_eq!(PouKind::from_code(k.code()), Some(k));
+        }
+        for &k in TypeDescKind::ALL {
+            assert_eq!(TypeDescKind::from_code(k.code()), Some(k));
+        }
+        assert_eq!(VarKind::from_code(VarKind::ALL.len() as u8), None);
+        assert_eq!(PouKind::from_code(3), None);
+        assert_eq!(TypeDescKind::from_code(7), None);
+        for k in stc_ir::FaultKind::ALL {
+            assert_eq!(stc_ir::FaultKind::from_code(u32::from(k.code())), Some(k));
+        }
+        assert_eq!(stc_ir::FaultKind::from_code(0), None);
+        for n in crate::num::Num::ALL {
+            assert_eq!(crate::num::Num::from_code(n.code()), Some(n));
+        }
     }
 }

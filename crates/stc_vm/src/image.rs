@@ -12,6 +12,37 @@ use stc_syntax::token::ElemType;
 
 use crate::instr::Instr;
 
+/// A field-less enumeration whose values are a file format and an ABI:
+/// stored as a byte in `.stbc` files and written as a code in the
+/// generated C (`stc_codes.h`). Each variant has an explicit value; never
+/// renumber one. `from_code` rejects values no variant has.
+macro_rules! coded_enum {
+    ($(#[$m:meta])* $name:ident { $($(#[$vm:meta])* $variant:ident = $code:literal,)* }) => {
+        $(#[$m])*
+        #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+        #[repr(u8)]
+        pub enum $name { $($(#[$vm])* $variant = $code,)* }
+
+        impl $name {
+            /// Every variant, in the order of their codes.
+            pub const ALL: &'static [$name] = &[$($name::$variant,)*];
+
+            /// The variant's stable code.
+            pub const fn code(self) -> u8 {
+                self as u8
+            }
+
+            /// The variant of a code; `None` for a value no variant has.
+            pub fn from_code(code: u8) -> Option<$name> {
+                match code {
+                    $($code => Some($name::$variant),)*
+                    _ => None,
+                }
+            }
+        }
+    };
+}
+
 /// Index of a type in [`Image::types`].
 pub type TypeRef = u32;
 
@@ -171,6 +202,33 @@ pub enum TypeDesc {
     },
 }
 
+coded_enum! {
+    /// The kind of a [`TypeDesc`] (`STC_TK_*` in C).
+    TypeDescKind {
+        Scalar = 0,
+        String = 1,
+        Enum = 2,
+        Array = 3,
+        Struct = 4,
+        Instance = 5,
+        Subrange = 6,
+    }
+}
+
+impl TypeDesc {
+    pub fn kind(&self) -> TypeDescKind {
+        match self {
+            TypeDesc::Scalar(_) => TypeDescKind::Scalar,
+            TypeDesc::String { .. } => TypeDescKind::String,
+            TypeDesc::Enum { .. } => TypeDescKind::Enum,
+            TypeDesc::Array { .. } => TypeDescKind::Array,
+            TypeDesc::Struct { .. } => TypeDescKind::Struct,
+            TypeDesc::Instance { .. } => TypeDescKind::Instance,
+            TypeDesc::Subrange { .. } => TypeDescKind::Subrange,
+        }
+    }
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct FieldDesc {
     pub name: String,
@@ -178,17 +236,19 @@ pub struct FieldDesc {
     pub offset: u32,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum VarKind {
-    Input,
-    Output,
-    InOut,
-    Var,
-    Temp,
-    External,
-    Global,
-    Result,
-    Hidden,
+coded_enum! {
+    /// The section a variable is declared in (`STC_VK_*` in C).
+    VarKind {
+        Input = 0,
+        Output = 1,
+        InOut = 2,
+        Var = 3,
+        Temp = 4,
+        External = 5,
+        Global = 6,
+        Result = 7,
+        Hidden = 8,
+    }
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -228,11 +288,12 @@ pub struct PouCode {
     pub instance_type: TypeRef,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum PouKind {
-    Function,
-    FunctionBlock,
-    Program,
+coded_enum! {
+    PouKind {
+        Function = 0,
+        FunctionBlock = 1,
+        Program = 2,
+    }
 }
 
 #[derive(Clone, Debug, PartialEq)]

@@ -463,6 +463,36 @@ mod tests {
 }
 
 #[cfg(test)]
+mod opcodes {
+    /// An opcode is its position in the table above, and a byte of `.stbc`
+    /// files: `opcodes.txt` pins the numbering. New instructions go at the
+    /// end (the test then asks to append them to the file, `STC_BLESS=1`);
+    /// moving or removing one fails here, and then needs a new
+    /// `format::VERSION` besides the new file.
+    #[test]
+    fn opcodes_keep_their_numbers() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src/opcodes.txt");
+        let now: String = super::MNEMONICS
+            .iter()
+            .enumerate()
+            .map(|(i, m)| format!("{i} {m}\n"))
+            .collect();
+        if std::env::var_os("STC_BLESS").is_some() {
+            std::fs::write(&path, &now).expect("src/opcodes.txt is writable");
+        }
+        let pinned = std::fs::read_to_string(&path).unwrap_or_default();
+        assert!(
+            now.starts_with(&pinned),
+            "the opcode numbering changed (see src/opcodes.txt)"
+        );
+        assert!(
+            now == pinned,
+            "new instructions: rerun with STC_BLESS=1 to add them to src/opcodes.txt"
+        );
+    }
+}
+
+#[cfg(test)]
 mod size {
     #[test]
     fn instructions_stay_small() {

@@ -3,21 +3,23 @@
 use stc_syntax::token::ElemType;
 
 /// The machine representation of a scalar, as used by `cvt` and `check`.
+/// The explicit values are instruction operands and bytes of `.stbc`
+/// files: never renumber one.
 #[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
 #[repr(u8)]
 pub enum Num {
     I8 = 0,
-    I16,
-    I32,
-    I64,
-    U8,
-    U16,
-    U32,
-    U64,
-    F32,
-    F64,
+    I16 = 1,
+    I32 = 2,
+    I64 = 3,
+    U8 = 4,
+    U16 = 5,
+    U32 = 6,
+    U64 = 7,
+    F32 = 8,
+    F64 = 9,
     /// BOOL: one byte, 0 or 1.
-    B,
+    B = 10,
 }
 
 impl Num {
@@ -62,7 +64,7 @@ impl Num {
     }
 
     pub fn from_code(c: u32) -> Option<Num> {
-        Num::ALL.get(c as usize).copied()
+        Num::ALL.into_iter().find(|n| n.code() == c)
     }
 
     pub fn code(self) -> u32 {

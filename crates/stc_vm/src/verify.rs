@@ -472,7 +472,9 @@ fn instr_ok(
                 op_ok(img, pou, op, size)?;
             }
         }
-        Instr::Fault { kind } if kind > 7 => return Err("unknown fault kind".into()),
+        Instr::Fault { kind } if stc_ir::FaultKind::from_code(kind).is_none() => {
+            return Err("unknown fault kind".into())
+        }
         _ => {}
     }
     Ok(())

@@ -229,11 +229,7 @@ pub fn expect_line(res: ElemType, cap: u32, r: &Result<Value, Fault>) -> String 
 }
 
 pub fn fault_code(f: Fault) -> u32 {
-    match f {
-        Fault::DivisionByZero => 1,
-        Fault::Conversion => 4,
-        Fault::MuxRange => 5,
-    }
+    u32::from(stc_ir::FaultKind::from_value_fault(f).code())
 }
 
 /// A value as the test program prints a variable of type `res`.

@@ -102,8 +102,9 @@ pub struct Layouts {
     pub pous: Vec<PouLayout>,
     /// By POU: whether its instance and frame fit (`Err`: too large).
     pou_ok: Vec<Result<(), TooLarge>>,
-    /// By type: whether a declaration of it was reported as too large.
-    declared: Vec<bool>,
+    /// By type: whether its being too large is reported at a declaration
+    /// of it, or is part of an enclosing array's (reported with it).
+    covered: Vec<bool>,
     diagnostics: Vec<Diagnostic>,
 }
 
@@ -163,7 +164,7 @@ impl Layouts {
             fields: vec![Vec::new(); m.types.len()],
             pous: vec![PouLayout::default(); m.pous.len()],
             pou_ok: vec![Ok(()); m.pous.len()],
-            declared: vec![false; m.types.len()],
+            covered: vec![false; m.types.len()],
             diagnostics: Vec::new(),
         };
         let mut state = vec![0u8; m.pous.len()];
@@ -188,7 +189,7 @@ impl Layouts {
             // (variable, member, global); one used nowhere, at its own
             // span: no type is left without a layout and without an error.
             if let Err(e) = l.ty(m, t, &mut state) {
-                if !e.reported && !l.declared[t.0 as usize] {
+                if !e.reported && !l.covered[t.0 as usize] {
                     let span = m.types.get(t).span.unwrap_or_default();
                     l.report(span, "the type".into(), e.size);
                     l.types[t.0 as usize] = Some(Err(TooLarge {
@@ -232,8 +233,8 @@ impl Layouts {
         match l {
             Err(e) if !e.reported => {
                 self.report(span, what, e.size);
-                if let Some(d) = self.declared.get_mut(t.0 as usize) {
-                    *d = true;
+                if let Some(c) = self.covered.get_mut(t.0 as usize) {
+                    *c = true;
                 }
                 Err(TooLarge {
                     reported: true,
@@ -389,10 +390,15 @@ impl Layouts {
                     }
                     // An element too large: the array needs `count` times
                     // its size (for the message where it is reported).
-                    Err(e) if !e.reported => Err(TooLarge {
-                        size: e.size.zip(count).and_then(|(s, n)| s.checked_mul(n)),
-                        reported: false,
-                    }),
+                    Err(e) if !e.reported => {
+                        if let Some(c) = self.covered.get_mut(elem.0 as usize) {
+                            *c = true;
+                        }
+                        Err(TooLarge {
+                            size: e.size.zip(count).and_then(|(s, n)| s.checked_mul(n)),
+                            reported: false,
+                        })
+                    }
                     Err(e) => Err(e),
                 }
             }

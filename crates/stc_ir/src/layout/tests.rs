@@ -433,6 +433,14 @@ proptest! {
                 prop_assert!(!diags.is_empty());
                 let mut spans: Vec<Span> = diags.iter().map(|d| d.span).collect();
                 prop_assert!(diags.iter().all(|d| d.code == Code::E0901));
+                // Every type here is declared somewhere: none is reported
+                // on its own, and an array of a type too large is reported
+                // with it, not again.
+                prop_assert!(
+                    diags.iter().all(|d| !d.message.starts_with("the type")),
+                    "{:?}",
+                    diags
+                );
                 spans.sort();
                 spans.dedup();
                 prop_assert_eq!(spans.len(), diags.len(), "reported twice: {:?}", diags);
@@ -461,6 +469,21 @@ fn members_past_4_gib_are_reported_not_wrapped() {
     assert_eq!(diags.len(), 2, "{diags:?}");
     assert!(
         diags[0].message.contains("needs 5248000328 bytes"),
+        "{}",
+        diags[0].message
+    );
+}
+
+/// Arrays of arrays too large: one diagnostic, at the variable.
+#[test]
+fn nested_anonymous_arrays_are_reported_once() {
+    let inner = Spec::Array(vec![(0, 16_000_000)], Box::new(Spec::Scalar(8)));
+    let mid = Spec::Array(vec![(0, 16_000_000)], Box::new(inner));
+    let outer = Spec::Array(vec![(0, 16_000_000)], Box::new(mid));
+    let diags = Layouts::compute(&module(&[(outer, Kind::Instance)], &[], &[])).unwrap_err();
+    assert_eq!(diags.len(), 1, "{diags:?}");
+    assert!(
+        diags[0].message.starts_with("variable"),
         "{}",
         diags[0].message
     );

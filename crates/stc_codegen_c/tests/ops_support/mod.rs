@@ -575,7 +575,6 @@ pub fn c_bytes(b: &[u8]) -> String {
 /// expected lines.
 pub fn harness_program(
     conversions: &[(ElemType, ElemType, Vec<Value>)],
-    parses: &[(ElemType, u32, Vec<String>)],
     splits: &[(stc_values::Intrinsic, ElemType, Vec<Value>)],
 ) -> (String, Vec<String>) {
     let mut pool = Pool::default();
@@ -608,41 +607,6 @@ pub fn harness_program(
         for v in vals {
             let r = stc_values::convert(*from, *to, v);
             expect.push(expect_line(*to, 0, &r));
-        }
-    }
-    for (k, (elem, cap, texts)) in parses.iter().enumerate() {
-        let lits: Vec<String> = texts.iter().map(|t| c_bytes(t.as_bytes())).collect();
-        let lens: Vec<String> = texts.iter().map(|t| format!("{}U", t.len())).collect();
-        let _ = writeln!(
-            tables,
-            "static const char *const p{k}[{n}] = {{ {} }};\nstatic const size_t pl{k}[{n}] = {{ {} }};",
-            lits.join(", "),
-            lens.join(", "),
-            n = texts.len()
-        );
-        let (decl, out) = match elem {
-            E::String => (
-                format!("uint8_t dst[{}];", cap + 2),
-                "out_str(dst);".to_string(),
-            ),
-            E::Wstring => (
-                format!("uint16_t dst[{}];", cap + 1),
-                "out_wstr(dst);".to_string(),
-            ),
-            _ => (format!("{} dst;", ctype(*elem)), out_stmt(*elem, "dst")),
-        };
-        let _ = writeln!(
-            body,
-            "    for (i = 0U; i < {n}U; i++) {{ {decl} uint32_t r; (void)memset(&dst, 0xA5, sizeof dst); \
-             r = stc_parse_value((uint8_t){ec}, p{k}[i], pl{k}[i], &dst, {cap}U); \
-             if (r != 0U) {{ printf(\"F%\" PRIu32 \"%s\\n\", r, unchanged(&dst, sizeof dst) ? \"\" : \" CHANGED\"); }} \
-             else {{ {out} }} }}",
-            n = texts.len(),
-            ec = elem_code_name(*elem),
-        );
-        for t in texts {
-            let r = stc_values::parse_value(*elem, t);
-            expect.push(expect_line(*elem, *cap, &r));
         }
     }
     for (k, (f, elem, vals)) in splits.iter().enumerate() {

@@ -1856,16 +1856,7 @@ impl<'a> Gen<'a> {
         let mut globals_out = Vec::new();
         for (gi, g) in m.globals.iter().enumerate() {
             let ty = self.meta_type(MetaKey::Type(g.ty));
-            let config = m
-                .configs
-                .iter()
-                .position(|c| {
-                    c.globals.contains(&stc_sema::GlobalId(gi as u32))
-                        || c.resources
-                            .iter()
-                            .any(|r| r.globals.contains(&stc_sema::GlobalId(gi as u32)))
-                })
-                .map_or(-1, |c| c as i64);
+            let config = m.config_of_global(gi).map_or(-1, |c| c as i64);
             globals_out.push(format!(
                 "{{ {}, {ty}U, &{}, {config}, {}, {}U }}",
                 c_str(m.spelled(g.name, g.span)),

@@ -105,20 +105,22 @@ impl Module {
                 return Some(g.0 as usize);
             }
         }
-        let in_config = |gi: usize| {
-            self.configs.iter().any(|c| {
-                c.globals.iter().any(|g| g.0 as usize == gi)
-                    || c.resources
-                        .iter()
-                        .any(|r| r.globals.iter().any(|g| g.0 as usize == gi))
-            })
-        };
+        let in_config = |gi: usize| self.config_of_global(gi).is_some();
         // (Outside the configurations that sema checked: only a global of
         // the external's type.)
         let fits =
             |i: usize| self.globals[i].name == name && self.same_type(self.globals[i].ty, ty);
         let top = (0..self.globals.len()).find(|&i| fits(i) && !in_config(i));
         top.or_else(|| (0..self.globals.len()).find(|&i| fits(i)))
+    }
+
+    /// The configuration a global belongs to (declared in it or in one of
+    /// its resources); `None` for a global outside every configuration.
+    pub fn config_of_global(&self, gi: usize) -> Option<usize> {
+        let id = stc_sema::GlobalId(gi as u32);
+        self.configs.iter().position(|c| {
+            c.globals.contains(&id) || c.resources.iter().any(|r| r.globals.contains(&id))
+        })
     }
 
     /// Whether two types are the same type (assignable both ways without

@@ -221,17 +221,7 @@ impl<'a> Compiler<'a> {
             };
             self.global_off.push(off);
             let ty = self.ty_ref(g.ty);
-            let config = self
-                .m
-                .configs
-                .iter()
-                .position(|c| {
-                    c.globals.contains(&stc_sema::GlobalId(gi as u32))
-                        || c.resources
-                            .iter()
-                            .any(|r| r.globals.contains(&stc_sema::GlobalId(gi as u32)))
-                })
-                .map(|c| c as u32);
+            let config = self.m.config_of_global(gi).map(|c| c as u32);
             globals.push(GlobalDesc {
                 name: self.m.spelled(g.name, g.span).to_string(),
                 ty,

@@ -235,7 +235,7 @@ impl Direct<'_> {
             .map(|v| self.m.types.scalar(v.ty));
         let to = self.m.types.scalar(o.target.ty);
         let converts = match (from, to) {
-            (Some(Some(f)), Some(t)) => conversion_faults(f, t),
+            (Some(Some(f)), Some(t)) => stc_values::conversion_may_fault(f, t),
             (None, _) => true,
             _ => false,
         };
@@ -258,7 +258,7 @@ impl Direct<'_> {
                 let same = m.types.kind(x.ty) == m.types.kind(e.ty);
                 let faults = match (elem(x.ty), elem(e.ty)) {
                     _ if same => false,
-                    (Some(f), Some(t)) => conversion_faults(f, t),
+                    (Some(f), Some(t)) => stc_values::conversion_may_fault(f, t),
                     // Aggregates: only a copy of one type is total.
                     _ => x.ty != e.ty,
                 };
@@ -322,8 +322,8 @@ fn binary_faults(
     };
     let nonzero = matches!(divisor.kind, ExprKind::Const(Value::Int(v)) if v != 0);
     // A plain integer value (`Value::Int`; not BOOL, a real or a string).
-    let int_valued =
-        |t: ElemType| !matches!(t, ElemType::Bool) && cat(t) != Cat::Real && cat(t) != Cat::Str;
+    let string = |t: ElemType| matches!(t, ElemType::String | ElemType::Wstring);
+    let int_valued = |t: ElemType| !matches!(t, ElemType::Bool) && !is_real(t) && !string(t);
     match op {
         BinOp::Eq | BinOp::Ne | BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge => false,
         BinOp::And | BinOp::Or | BinOp::Xor => false,
@@ -342,43 +342,9 @@ fn binary_faults(
             op == BinOp::Mod || !is_real(a) || !rhs || !is_real(res)
         }
         // Integer arithmetic (operands `Value::Int` or `Value::Bool`).
-        _ if !int_like(res) || cat(a) == Cat::Str || cat(b) == Cat::Str => true,
+        _ if !int_like(res) || string(a) || string(b) => true,
         BinOp::Div | BinOp::Mod => !nonzero,
         BinOp::Add | BinOp::Sub | BinOp::Mul | BinOp::Pow => false,
-    }
-}
-
-/// Whether converting a value of elementary type `from` to `to` can fault
-/// (`stc_values::convert`).
-pub fn conversion_faults(from: ElemType, to: ElemType) -> bool {
-    use ElemType as E;
-    if from == to {
-        return false;
-    }
-    if !stc_values::conversion_allowed(from, to) {
-        return true;
-    }
-    let (cf, ct) = (cat(from), cat(to));
-    match (cf, ct) {
-        // To a string: a WSTRING or a WCHAR may have no STRING character.
-        (_, Cat::Str) => matches!(from, E::Wstring | E::Wchar),
-        // From a string: parsed (CHAR and WCHAR take the first character).
-        (Cat::Str, _) => !(from == E::String && matches!(to, E::Char | E::Wchar)),
-        (Cat::Real, Cat::Int | Cat::Dur) => true,
-        (Cat::Char, Cat::Char) => to == E::Char,
-        (Cat::Date, Cat::Dt) => true,
-        (Cat::Real, Cat::Real) | (Cat::Int, Cat::Real) => false,
-        (Cat::Bool | Cat::Int, Cat::Bool) => false,
-        (Cat::Bool | Cat::Int | Cat::Char, Cat::Int | Cat::Char) => false,
-        (Cat::Dur, Cat::Dur | Cat::Int | Cat::Real | Cat::Tod) => false,
-        (Cat::Int, Cat::Dur) => false,
-        (Cat::Tod, Cat::Dur) => false,
-        (Cat::Date | Cat::Tod | Cat::Dt, Cat::Int) | (Cat::Int, Cat::Date | Cat::Tod | Cat::Dt) => {
-            false
-        }
-        (Cat::Date, Cat::Date) | (Cat::Tod, Cat::Tod) | (Cat::Dt, Cat::Dt) => false,
-        (Cat::Dt, Cat::Date | Cat::Tod) => false,
-        _ => true,
     }
 }
 
@@ -428,7 +394,7 @@ fn intrinsic_faults(
             types.iter().any(|t| t.is_some_and(is_time_like))
                 && types.iter().any(|t| t.is_some_and(is_real))
         }
-        I::Convert { from, to } => conversion_faults(from, to),
+        I::Convert { from, to } => stc_values::conversion_may_fault(from, to),
         I::ConcatDateTod | I::ConcatDate | I::ConcatTod | I::ConcatDt => true,
         I::SplitDate | I::SplitTod | I::SplitDt => true,
         I::Trunc { .. } | I::BcdToInt { .. } | I::IntToBcd { .. } => true,
@@ -442,35 +408,6 @@ fn int_like(t: ElemType) -> bool {
             t,
             ElemType::Byte | ElemType::Word | ElemType::Dword | ElemType::Lword
         )
-}
-
-/// The families conversions are decided by.
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Cat {
-    Bool,
-    Int,
-    Real,
-    Dur,
-    Date,
-    Tod,
-    Dt,
-    Str,
-    Char,
-}
-
-fn cat(t: ElemType) -> Cat {
-    use ElemType as E;
-    match t {
-        E::Bool => Cat::Bool,
-        E::Real | E::Lreal => Cat::Real,
-        E::Time | E::Ltime => Cat::Dur,
-        E::Date | E::Ldate => Cat::Date,
-        E::Tod | E::Ltod => Cat::Tod,
-        E::Dt | E::Ldt => Cat::Dt,
-        E::String | E::Wstring => Cat::Str,
-        E::Char | E::Wchar => Cat::Char,
-        _ => Cat::Int,
-    }
 }
 
 #[cfg(test)]

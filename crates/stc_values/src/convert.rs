@@ -58,6 +58,41 @@ fn cat(t: ElemType) -> Cat {
     }
 }
 
+/// Whether [`convert`] from `from` to `to` can fault for some value (a
+/// refused pair counts as faulting): what a back end needs to know to leave
+/// out a check. Sound by test: every conversion that faults on a value has
+/// this true (`conversion_may_fault_is_sound`).
+pub fn conversion_may_fault(from: ElemType, to: ElemType) -> bool {
+    if from == to {
+        return false;
+    }
+    if !conversion_allowed(from, to) {
+        return true;
+    }
+    let (cf, ct) = (cat(from), cat(to));
+    match (cf, ct) {
+        // To a string: a WSTRING or a WCHAR may have no STRING character.
+        (_, Cat::Str) => matches!(from, E::Wstring | E::Wchar),
+        // From a string: parsed (CHAR and WCHAR take the first character).
+        (Cat::Str, _) => !(from == E::String && matches!(to, E::Char | E::Wchar)),
+        (Cat::Real, Cat::Int | Cat::Dur) => true,
+        (Cat::Char, Cat::Char) => to == E::Char,
+        (Cat::Date, Cat::Dt) => true,
+        (Cat::Real, Cat::Real) | (Cat::Int, Cat::Real) => false,
+        (Cat::Bool | Cat::Int, Cat::Bool) => false,
+        (Cat::Bool | Cat::Int | Cat::Char, Cat::Int | Cat::Char) => false,
+        (Cat::Dur, Cat::Dur | Cat::Int | Cat::Real | Cat::Tod) => false,
+        (Cat::Int, Cat::Dur) => false,
+        (Cat::Tod, Cat::Dur) => false,
+        (Cat::Date | Cat::Tod | Cat::Dt, Cat::Int) | (Cat::Int, Cat::Date | Cat::Tod | Cat::Dt) => {
+            false
+        }
+        (Cat::Date, Cat::Date) | (Cat::Tod, Cat::Tod) | (Cat::Dt, Cat::Dt) => false,
+        (Cat::Dt, Cat::Date | Cat::Tod) => false,
+        _ => true,
+    }
+}
+
 /// Whether `FROM_TO_TO` is a conversion this implementation provides (and
 /// so whether the generic `TO_*` accepts an argument of type `from`).
 /// Identity (`from == to`) is allowed.

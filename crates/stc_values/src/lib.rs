@@ -31,7 +31,9 @@ pub mod types;
 pub use stc_syntax::token::{ElemType, GenericType};
 
 pub use call::{call, split, split_lookup};
-pub use convert::{bcd_to_int, conversion_allowed, convert, int_to_bcd, trunc};
+pub use convert::{
+    bcd_to_int, conversion_allowed, conversion_may_fault, convert, int_to_bcd, trunc,
+};
 pub use ops::{binary, unary};
 pub use stdfn::{all, lookup, Intrinsic, Param, StdFunction, TyPat};
 pub use text::{parse_value, string_text, to_text, truncate};

@@ -5,8 +5,8 @@
 
 use proptest::prelude::*;
 use stc_values::{
-    bcd_to_int, binary, call, common_type, convert, int_range, int_to_bcd, is_integer, to_text,
-    unary, wrap, BinOp, ElemType as E, Fault, Intrinsic, UnOp, Value,
+    bcd_to_int, binary, call, common_type, conversion_may_fault, convert, int_range, int_to_bcd,
+    is_integer, to_text, unary, wrap, BinOp, ElemType as E, Fault, Intrinsic, UnOp, Value,
 };
 
 const INT_TYPES: [E; 8] = [
@@ -86,6 +86,23 @@ fn same_real(a: &Value, b: &Value) -> bool {
             (x.is_nan() && y.is_nan()) || x.to_bits() == y.to_bits()
         }
         _ => a == b,
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(4096))]
+    /// A back end leaves out the fault check of a conversion that
+    /// `conversion_may_fault` says cannot fault: it must never fault.
+    #[test]
+    fn conversion_may_fault_is_sound((from, v) in typed_value(), to in any_type()) {
+        if convert(from, to, &v).is_err() {
+            prop_assert!(conversion_may_fault(from, to), "{from:?} -> {to:?} faulted on {v:?}");
+        }
+        // The value's own text, as STRING, converted back (the parse path).
+        let text = Value::Str(to_text(from, &v).into_bytes());
+        if convert(E::String, to, &text).is_err() {
+            prop_assert!(conversion_may_fault(E::String, to));
+        }
     }
 }
 

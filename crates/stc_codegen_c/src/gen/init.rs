@@ -209,12 +209,7 @@ impl Gen<'_> {
         if !self.init_uses_self(p) {
             out.push_str("    (void)self;\n");
         }
-        for l in &self.f.body {
-            out.push_str(l);
-            out.push('\n');
-        }
-        out.push_str("}\n\n");
-        self.bodies.push_str(&out);
+        self.finish_function(out);
         Ok(())
     }
 }

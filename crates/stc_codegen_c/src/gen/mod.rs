@@ -502,12 +502,7 @@ impl<'a> Gen<'a> {
         if !self.body_uses_param(p) {
             let _ = writeln!(out, "    (void){param};");
         }
-        for l in &self.f.body {
-            out.push_str(l);
-            out.push('\n');
-        }
-        out.push_str("}\n\n");
-        self.bodies.push_str(&out);
+        self.finish_function(out);
         Ok(())
     }
 
@@ -520,6 +515,17 @@ impl<'a> Gen<'a> {
         } else {
             self.line("if (stc_watchdog_tripped() != 0U) { return; }".into());
         }
+    }
+
+    /// Ends a function whose head is `out`: its body lines, the closing
+    /// brace, appended to the bodies of the program.
+    fn finish_function(&mut self, mut out: String) {
+        for l in &self.f.body {
+            out.push_str(l);
+            out.push('\n');
+        }
+        out.push_str("}\n\n");
+        self.bodies.push_str(&out);
     }
 
     fn line(&mut self, s: String) {

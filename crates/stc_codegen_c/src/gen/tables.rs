@@ -485,17 +485,7 @@ impl Gen<'_> {
                             .map_or("NULL".to_string(), |a| c_str(&a.to_string()))
                     ));
                 }
-                let mn = format!("meta_members_{i}");
-                let _ = writeln!(
-                    self.meta_extra,
-                    "static const stc_member {mn}[{}] = {{\n    {}\n}};",
-                    members.len().max(1),
-                    if members.is_empty() {
-                        "{ NULL, 0U, 0U, 0U, 0U, 0U, NULL }".to_string()
-                    } else {
-                        members.join(",\n    ")
-                    }
-                );
+                let mn = self.member_table(i, &members);
                 row(
                     "STC_TK_INSTANCE",
                     0,
@@ -648,17 +638,7 @@ impl Gen<'_> {
                                 names::ident(m.spelled(f.name, f.span))
                             ));
                         }
-                        let mn = format!("meta_members_{i}");
-                        let _ = writeln!(
-                            self.meta_extra,
-                            "static const stc_member {mn}[{}] = {{\n    {}\n}};",
-                            members.len().max(1),
-                            if members.is_empty() {
-                                "{ NULL, 0U, 0U, 0U, 0U, 0U, NULL }".to_string()
-                            } else {
-                                members.join(",\n    ")
-                            }
-                        );
+                        let mn = self.member_table(i, &members);
                         row(
                             "STC_TK_STRUCT",
                             0,
@@ -696,5 +676,23 @@ impl Gen<'_> {
                 }
             }
         }
+    }
+
+    /// Writes the member table `meta_members_<i>` of a struct or instance
+    /// type (one all-NULL entry when it has none: C has no empty arrays)
+    /// and returns its name.
+    pub(super) fn member_table(&mut self, i: u32, members: &[String]) -> String {
+        let mn = format!("meta_members_{i}");
+        let _ = writeln!(
+            self.meta_extra,
+            "static const stc_member {mn}[{}] = {{\n    {}\n}};",
+            members.len().max(1),
+            if members.is_empty() {
+                "{ NULL, 0U, 0U, 0U, 0U, 0U, NULL }".to_string()
+            } else {
+                members.join(",\n    ")
+            }
+        );
+        mn
     }
 }

@@ -152,13 +152,7 @@ impl CEngine {
                 line: *line,
                 col: *col,
             },
-            None => VmFault {
-                kind,
-                pou: "?".into(),
-                file: "?".into(),
-                line: 0,
-                col: 0,
-            },
+            None => VmFault::unlocated(kind, "?"),
         }
     }
 }
@@ -194,13 +188,7 @@ impl Engine for CEngine {
         max_steps: u64,
     ) -> Result<u64, VmFault> {
         let Some(&(_, body, data)) = self.bodies.iter().find(|b| b.0 == inst.offset) else {
-            return Err(VmFault {
-                kind: FaultKind::InvalidCode,
-                pou: inst.name.clone(),
-                file: "?".into(),
-                line: 0,
-                col: 0,
-            });
+            return Err(VmFault::unlocated(FaultKind::InvalidCode, &inst.name));
         };
         // SAFETY: the pointers are the library's own variables (stc_rt.h),
         // the body and instance are an entry of its stc_programs or

@@ -23,6 +23,19 @@ pub struct VmFault {
     pub col: u32,
 }
 
+impl VmFault {
+    /// A fault with no known source position (`?:0:0`) in `pou`.
+    pub fn unlocated(kind: FaultKind, pou: &str) -> VmFault {
+        VmFault {
+            kind,
+            pou: pou.into(),
+            file: "?".into(),
+            line: 0,
+            col: 0,
+        }
+    }
+}
+
 impl std::fmt::Display for VmFault {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
@@ -147,13 +160,7 @@ impl Machine {
                 line,
                 col,
             },
-            None => VmFault {
-                kind,
-                pou: "?".into(),
-                file: "?".into(),
-                line: 0,
-                col: 0,
-            },
+            None => VmFault::unlocated(kind, "?"),
         }
     }
 }

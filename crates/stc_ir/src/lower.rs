@@ -1,6 +1,7 @@
 //! Lowering: the analysed syntax tree to the IR.
 
 use stc_diagnostics::{SourceMap, Span};
+use stc_sema::idx::IdVec;
 use stc_sema::{
     Analysis, BoundArgKind, CallInfo, CallTarget, InitValue, PouId, Res, Section, TypeId, TypeKind,
     VarId,
@@ -92,7 +93,7 @@ pub fn lower(ast: &Ast, analysis: Analysis, interner: &Interner, sources: &Sourc
             a: &analysis,
             sources,
             pou: PouId(i as u32),
-            vars: Vec::new(),
+            vars: IdVec::new(),
             keeps: &keeps,
             pending: Vec::new(),
         };
@@ -113,7 +114,7 @@ pub fn lower(ast: &Ast, analysis: Analysis, interner: &Interner, sources: &Sourc
         .collect();
     Module {
         types: analysis.types,
-        pous,
+        pous: pous.into(),
         globals,
         configs: analysis.configs,
         names,
@@ -126,7 +127,7 @@ struct Lowerer<'a> {
     a: &'a Analysis,
     sources: &'a SourceMap,
     pou: PouId,
-    vars: Vec<Var>,
+    vars: IdVec<VarId, Var>,
     /// Per POU: whether its implicit EN and ENO have storage.
     keeps: &'a [bool],
     /// Statements that must run before the statement being lowered: calls
@@ -472,7 +473,7 @@ impl<'a> Lowerer<'a> {
         let Some(v) = self.a.pou(self.pou).lookup(var.sym) else {
             return;
         };
-        let ty = self.vars[v.0 as usize].ty;
+        let ty = self.vars[v].ty;
         let Some(elem) = self.a.types.numeric(ty) else {
             return;
         };

@@ -238,6 +238,19 @@ fn configure_and_run(image: Box<dyn Engine>, args: &RunArgs) -> Outcome {
         Ok(s) => s,
         Err(e) => return usage_error(e),
     };
+    let mut warnings: String = sim
+        .plan()
+        .warnings()
+        .iter()
+        .map(|w| format!("{w}\n"))
+        .collect();
+    if args.realtime && !warnings.is_empty() {
+        // Reports stream from the first cycle on: the warnings go first.
+        if let Some(mut e) = console::stderr() {
+            let _ = e.write_all(warnings.as_bytes());
+            warnings.clear();
+        }
+    }
     let cycles = match (args.cycles, args.realtime) {
         (Some(n), _) => Some(n),
         (None, false) => Some(1),
@@ -257,13 +270,15 @@ fn configure_and_run(image: Box<dyn Engine>, args: &RunArgs) -> Outcome {
         ReportFormat::Json => Format::Json,
     };
     if args.realtime {
-        realtime(&mut sim, cycles, args.trace, format)
+        let mut o = realtime(&mut sim, cycles, args.trace, format);
+        o.stderr.insert_str(0, &warnings);
+        o
     } else {
         let mut stdout = String::new();
         let result = stc_runtime::run(&mut sim, cycles, args.trace, &mut Unpaced, &mut |r| {
             stdout.push_str(&r.render(format))
         });
-        finish(stdout, String::new(), result)
+        finish(stdout, warnings, result)
     }
 }
 

@@ -76,7 +76,7 @@ fn error_files_give_exactly_their_annotated_diagnostics() {
     common::run_all(&dir, |case| {
         let parsed = parse(case);
         common::compare(&parsed.diagnostics, &parsed.sources)?;
-        let rendered = driver::render(
+        let rendered = driver::render_each(
             &parsed.diagnostics,
             &parsed.sources,
             &driver::Options::default(),
@@ -119,7 +119,7 @@ fn corpus_of_every_source_file_parses() {
                 parsed.diagnostics.is_empty(),
                 "{}: {}",
                 f.display(),
-                driver::render(
+                driver::render_each(
                     &parsed.diagnostics,
                     &parsed.sources,
                     &driver::Options::default()

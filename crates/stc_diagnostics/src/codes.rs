@@ -261,6 +261,11 @@ conversion exists.";
 "A function block type cannot be called directly: declare an instance
 (`t1 : TON;`) and call the instance (`t1(IN := x, PT := T#1s);`). An
 instance itself is not a value either: use its outputs (`t1.Q`).";
+    E0410 Error "missing argument"
+"A call of a standard function must give every one of its inputs
+(`LIMIT(MN, IN, MX)` needs all three; a user function's inputs that are not
+given take their initial values). Give the missing input, positionally in
+order or by name (`LIMIT(MN := 0.0, IN := r, MX := 100.0)`).";
 
     E0501 Error "function block instance in a FUNCTION"
 "Functions have no memory between calls, so they cannot declare function block

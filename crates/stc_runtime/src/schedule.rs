@@ -179,6 +179,34 @@ impl Plan {
         })
     }
 
+    /// What the plan changes silently otherwise: a periodic task whose
+    /// interval the tick does not divide runs at another rate (every
+    /// least common multiple of the two), said here.
+    pub fn warnings(&self) -> Vec<String> {
+        let show = |ns: i128| match i64::try_from(ns) {
+            Ok(ns) => stc_syntax::literal::format_duration(ns, false),
+            Err(_) => "longer than the largest TIME".to_string(),
+        };
+        let mut out = Vec::new();
+        for t in &self.tasks {
+            let Some(interval) = t.interval_ns else {
+                continue;
+            };
+            if interval % self.tick_ns != 0 {
+                let (a, b) = (i128::from(interval), i128::from(self.tick_ns));
+                let lcm = a / i128::from(gcd(interval, self.tick_ns)) * b;
+                out.push(format!(
+                    "warning: task `{}` has INTERVAL {}, which the tick {} does not divide: it runs every {}",
+                    t.name,
+                    show(a),
+                    show(b),
+                    show(lcm)
+                ));
+            }
+        }
+        out
+    }
+
     /// The time of cycle `k` (1-based): (k - 1) * tick; `None` past the
     /// largest TIME.
     pub fn time_of(&self, cycle: u64) -> Option<i64> {
@@ -325,6 +353,21 @@ mod tests {
                 "--config and --program cannot be used together".into()
             ))
         );
+    }
+
+    #[test]
+    fn a_tick_that_does_not_divide_an_interval_is_a_warning() {
+        let img = sample_model();
+        let plan = Plan::new(&img, Chosen::Config(0), Some(4 * MS)).unwrap();
+        assert_eq!(
+            plan.warnings(),
+            vec![
+                "warning: task `slow` has INTERVAL T#30ms, which the tick T#4ms does not divide: it runs every T#60ms".to_string(),
+                "warning: task `fast` has INTERVAL T#10ms, which the tick T#4ms does not divide: it runs every T#20ms".to_string(),
+            ]
+        );
+        let plan = Plan::new(&img, Chosen::Config(0), Some(5 * MS)).unwrap();
+        assert!(plan.warnings().is_empty());
     }
 
     #[test]

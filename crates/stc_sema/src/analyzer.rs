@@ -263,13 +263,22 @@ impl<'a> Sema<'a> {
         let name_u = name.to_ascii_uppercase();
         let limit = (name.len() / 3).max(1);
         let mut best: Option<(usize, &str)> = None;
+        // A name that abbreviates or spells out one candidate (`RESET` for
+        // `R`, `PRESET` for `PV`'s `P`...): the only candidate it starts
+        // with, or that starts with it.
+        let mut affix: Vec<&str> = Vec::new();
         for c in candidates {
-            let d = edit_distance(&name_u, &c.to_ascii_uppercase());
+            let c_u = c.to_ascii_uppercase();
+            let d = edit_distance(&name_u, &c_u);
             if d <= limit && d > 0 && best.is_none_or(|(bd, _)| d < bd) {
                 best = Some((d, c));
             }
+            if d > 0 && !c_u.is_empty() && (name_u.starts_with(&c_u) || c_u.starts_with(&name_u)) {
+                affix.push(c);
+            }
         }
         best.map(|(_, c)| c.to_string())
+            .or_else(|| (affix.len() == 1).then(|| affix[0].to_string()))
     }
 
     /// The syntax of a POU.

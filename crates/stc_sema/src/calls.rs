@@ -339,7 +339,7 @@ impl<'a> Sema<'a> {
                                     Section::Input | Section::InOut | Section::Output
                                 )
                             })
-                            .map(|v| self.sym_name(v.name))
+                            .map(|v| self.spelled(v.name, v.span))
                             .collect();
                         let mut d = Diagnostic::new(Code::E0401, name.span, msg)
                             .with_label("unknown parameter");
@@ -349,6 +349,10 @@ impl<'a> Sema<'a> {
                             {
                                 d = d.with_help(format!("did you mean `{s}`?"));
                             }
+                            d = d.with_note(format!(
+                                "the parameters of `{callee_name}` are {}",
+                                names.join(", ")
+                            ));
                         }
                         self.emit(d);
                         self.check_expr(*value, Some(TypeId::ERROR), scope);
@@ -645,7 +649,7 @@ impl<'a> Sema<'a> {
                 .map(|i| param_name(f, i))
                 .collect();
             let msg = format!("`{}` needs the input(s) {}", f.name, missing.join(", "));
-            self.emit(Diagnostic::new(Code::E0403, span, msg).with_label("missing argument"));
+            self.emit(Diagnostic::new(Code::E0410, span, msg).with_label("missing argument"));
             self.loose_args(args, scope);
             return TypeId::ERROR;
         }
@@ -744,7 +748,7 @@ impl<'a> Sema<'a> {
         }
         let [Some(arr), Some(dim)] = slots else {
             let msg = format!("`{name}` needs the inputs ARR and DIM");
-            self.emit(Diagnostic::new(Code::E0403, span, msg).with_label("missing argument"));
+            self.emit(Diagnostic::new(Code::E0410, span, msg).with_label("missing argument"));
             self.loose_args(args, scope);
             return TypeId::ERROR;
         };

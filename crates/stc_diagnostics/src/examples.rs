@@ -1433,6 +1433,29 @@ END_VAR
 END_PROGRAM
 ",
     ),
+    (
+        Code::E0410,
+        r"PROGRAM Tank
+VAR_INPUT
+    demand : REAL;
+END_VAR
+VAR_OUTPUT
+    valve : REAL;
+END_VAR
+    valve := LIMIT(0.0, demand);   // E0410
+END_PROGRAM
+",
+        r"PROGRAM Tank
+VAR_INPUT
+    demand : REAL;
+END_VAR
+VAR_OUTPUT
+    valve : REAL;
+END_VAR
+    valve := LIMIT(0.0, demand, 100.0);
+END_PROGRAM
+",
+    ),
     // Program organisation units.
     (
         Code::E0501,
@@ -2188,12 +2211,12 @@ VAR_INPUT
     open_cmd : BOOL;
 END_VAR
 VAR
-    state : (Stopped, Opening, Open);   // W0102
+    state : (Stopped, Opening, Open);
 END_VAR
     IF open_cmd THEN
         state := Opening;
     ELSE
-        state := Stopped;
+        state := Stopped;   // W0102
     END_IF;
 END_PROGRAM
 ",

@@ -16,7 +16,7 @@ use stc_engine_c::{CEngine, Toolchain};
 use stc_runtime::path::split_list;
 use stc_runtime::realtime::{RealTime, WallClock};
 use stc_runtime::Engine;
-use stc_runtime::{Format, Report, Simulation, Stimulus, Unpaced, DEFAULT_MAX_STEPS};
+use stc_runtime::{Format, Renderer, Report, Simulation, Stimulus, Unpaced, DEFAULT_MAX_STEPS};
 use stc_vm::Machine;
 
 use crate::cli::{Outcome, EXIT_ERRORS, EXIT_OK, EXIT_USAGE};
@@ -86,6 +86,7 @@ pub enum Backend {
 pub enum ReportFormat {
     Text,
     Json,
+    Csv,
 }
 
 fn usage_error(msg: impl std::fmt::Display) -> Outcome {
@@ -268,6 +269,7 @@ fn configure_and_run(image: Box<dyn Engine>, args: &RunArgs) -> Outcome {
     let format = match args.format {
         ReportFormat::Text => Format::Text,
         ReportFormat::Json => Format::Json,
+        ReportFormat::Csv => Format::Csv,
     };
     if args.realtime {
         let mut o = realtime(&mut sim, cycles, args.trace, format);
@@ -275,8 +277,9 @@ fn configure_and_run(image: Box<dyn Engine>, args: &RunArgs) -> Outcome {
         o
     } else {
         let mut stdout = String::new();
+        let mut renderer = Renderer::new(format);
         let result = stc_runtime::run(&mut sim, cycles, args.trace, &mut Unpaced, &mut |r| {
-            stdout.push_str(&r.render(format))
+            stdout.push_str(&renderer.render(r))
         });
         finish(stdout, warnings, result)
     }
@@ -315,12 +318,13 @@ fn realtime(sim: &mut Simulation, cycles: Option<u64>, trace: bool, format: Form
         }
     };
     let mut pacer = RealTime::new(WallClock::new(), sim.plan().tick_ns, stop, &mut warn);
+    let mut renderer = Renderer::new(format);
     let mut emit = |r: &Report| match &mut out_stream {
         Some(f) => {
-            let _ = f.write_all(r.render(format).as_bytes());
+            let _ = f.write_all(renderer.render(r).as_bytes());
             let _ = f.flush();
         }
-        None => stdout.push_str(&r.render(format)),
+        None => stdout.push_str(&renderer.render(r)),
     };
     let result = stc_runtime::run(sim, cycles, trace, &mut pacer, &mut emit);
     finish(stdout, stderr, result)

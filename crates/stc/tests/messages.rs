@@ -121,3 +121,49 @@ fn help_is_given_where_a_person_needs_it() {
         assert!(out.stderr.contains(want), "no `{want}` in:\n{}", out.stderr);
     }
 }
+
+#[test]
+fn reports_as_csv_and_stimulus_rows_by_time() {
+    let p = write(
+        "csv.st",
+        "PROGRAM Main VAR_INPUT k : INT; END_VAR VAR_OUTPUT n : INT; s : STRING := 'a,\"b'; END_VAR n := n + k; END_PROGRAM\n",
+    );
+    let st = write("csv_stim.csv", "time,Main.k\nT#0s,1\nT#20ms,10\n");
+    let out = run(&[
+        "run",
+        p.to_str().unwrap(),
+        "--cycles",
+        "4",
+        "--tick",
+        "10ms",
+        "--trace",
+        "--format",
+        "csv",
+        "--stimulus",
+        st.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status, 0, "{}", out.stderr);
+    assert_eq!(
+        out.stdout,
+        "cycle,time,Main.n,Main.s\n\
+         1,T#0s,1,\"a,\"\"b\"\n\
+         2,T#10ms,2,\"a,\"\"b\"\n\
+         3,T#20ms,12,\"a,\"\"b\"\n\
+         4,T#30ms,22,\"a,\"\"b\"\n"
+    );
+    let off = run(&[
+        "run",
+        p.to_str().unwrap(),
+        "--tick",
+        "15ms",
+        "--stimulus",
+        st.to_str().unwrap(),
+    ]);
+    assert_eq!(off.status, 2, "{}", off.stderr);
+    assert!(
+        off.stderr
+            .contains("T#20ms is not the time of a cycle with a tick of T#15ms"),
+        "{}",
+        off.stderr
+    );
+}

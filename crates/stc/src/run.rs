@@ -1,4 +1,4 @@
-//! `stc run` (spec/cli.md): compile the sources (or load one `.stbc`
+//! `stc run` (spec/cli.md): compile the sources (or load one `.stbc` or `.vmasm`
 //! file), set the runtime up from the options, run in simulated time or in
 //! real time, and print the reports.
 //!
@@ -118,25 +118,38 @@ fn load(
     opts: &Options,
     backend: Backend,
 ) -> Result<(Box<dyn Engine>, String), Outcome> {
-    let is_stbc = |p: &Path| {
-        p.extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("stbc"))
+    // Bytecode: a `.stbc` file, or its VMASM text (`--emit vmasm`), which
+    // is assembled and verified like a loaded file.
+    let bytecode_kind = |p: &Path| {
+        p.extension().and_then(|e| {
+            let e = e.to_ascii_lowercase();
+            (e == "stbc" || e == "vmasm").then_some(e)
+        })
     };
-    if files.iter().any(|p| is_stbc(p)) {
+    if let Some(kind) = files.iter().find_map(|p| bytecode_kind(p)) {
         let [file] = files else {
-            return Err(usage_error(
-                "a .stbc file is run alone, without other files",
-            ));
+            return Err(usage_error(format!(
+                "a .{} file is run alone, without other files",
+                kind.to_string_lossy()
+            )));
         };
         let bytes = std::fs::read(file)
             .map_err(|e| usage_error(format!("cannot read {}: {e}", file.display())))?;
         if backend != Backend::Vm {
-            return Err(usage_error(
-                "a .stbc file is bytecode: it runs on the VM (--backend vm)",
-            ));
+            return Err(usage_error(format!(
+                "a .{} file is bytecode: it runs on the VM (--backend vm)",
+                kind.to_string_lossy()
+            )));
         }
-        let image = stc_vm::format::decode(&bytes)
-            .map_err(|e| usage_error(format!("cannot load {}: {e}", file.display())))?;
+        let image = if kind == "vmasm" {
+            let text = String::from_utf8(bytes).map_err(|_| {
+                usage_error(format!("cannot load {}: not UTF-8 text", file.display()))
+            })?;
+            stc_vm::asm::assemble(&text)
+        } else {
+            stc_vm::format::decode(&bytes)
+        }
+        .map_err(|e| usage_error(format!("cannot load {}: {e}", file.display())))?;
         return Ok((Box::new(Machine::new(Arc::new(image))), String::new()));
     }
     let (sm, diags) = sources::load(files).map_err(usage_error)?;

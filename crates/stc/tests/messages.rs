@@ -167,3 +167,34 @@ fn reports_as_csv_and_stimulus_rows_by_time() {
         off.stderr
     );
 }
+
+#[test]
+fn vmasm_text_runs_as_its_program_does() {
+    let root = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
+    let src = root.join("examples/traffic_light.st");
+    let asm = std::env::temp_dir().join(format!("stc-messages-{}.vmasm", std::process::id()));
+    let built = run(&[
+        "build",
+        "--emit",
+        "vmasm",
+        src.to_str().unwrap(),
+        "-o",
+        asm.to_str().unwrap(),
+    ]);
+    assert_eq!(built.status, 0, "{}", built.stderr);
+    let direct = run(&["run", src.to_str().unwrap(), "--cycles", "40", "--trace"]);
+    let assembled = run(&["run", asm.to_str().unwrap(), "--cycles", "40", "--trace"]);
+    assert_eq!(assembled.status, 0, "{}", assembled.stderr);
+    assert_eq!(assembled.stdout, direct.stdout);
+    let broken = write(
+        "broken.vmasm",
+        "  mov8 @1, #2\n  bogus 1 2 3\n.tables\nnot a table\n",
+    );
+    let out = run(&["run", broken.to_str().unwrap()]);
+    assert_eq!(out.status, 2, "{}", out.stderr);
+    assert!(
+        out.stderr.starts_with("error: cannot load "),
+        "{}",
+        out.stderr
+    );
+}

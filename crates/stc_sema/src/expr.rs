@@ -1058,7 +1058,7 @@ impl<'a> Sema<'a> {
         }
     }
 
-    fn binary(
+    pub(crate) fn binary(
         &mut self,
         e: ExprId,
         op: BinaryOp,

@@ -396,7 +396,14 @@ fn to_string_value(from: ElemType, to: ElemType, v: &Value) -> Result<Value, Fau
             }
         }
         _ => {
-            let text = to_text(from, v);
+            let mut text = to_text(from, v);
+            if crate::is_time_like(from) {
+                // *_TO_STRING gives the literal without its type prefix
+                // (spec/semantics.md): `1s500ms`, not `T#1s500ms`.
+                if let Some((_, body)) = text.split_once('#') {
+                    text = body.to_string();
+                }
+            }
             Ok(if wide {
                 Value::wstring(&text)
             } else {
@@ -698,8 +705,12 @@ mod tests {
         assert_eq!(conv(E::Int, E::String, i(-42)), Ok(s("-42")));
         assert_eq!(conv(E::Bool, E::String, Value::Bool(true)), Ok(s("TRUE")));
         assert_eq!(conv(E::Real, E::String, r(0.1f32 as f64)), Ok(s("0.1")));
-        assert_eq!(conv(E::Time, E::String, i(1500 * MS)), Ok(s("T#1s500ms")));
-        assert_eq!(conv(E::Time, E::Wstring, i(0)), Ok(Value::wstring("T#0s")));
+        assert_eq!(conv(E::Time, E::String, i(1500 * MS)), Ok(s("1s500ms")));
+        assert_eq!(conv(E::Time, E::String, i(-2000 * MS)), Ok(s("-2s")));
+        assert_eq!(conv(E::Date, E::String, i(86_400)), Ok(s("1970-01-02")));
+        assert_eq!(conv(E::Tod, E::String, i(1500 * MS)), Ok(s("00:00:01.5")));
+        assert_eq!(conv(E::Dt, E::String, i(0)), Ok(s("1970-01-01-00:00:00")));
+        assert_eq!(conv(E::Time, E::Wstring, i(0)), Ok(Value::wstring("0s")));
         assert_eq!(conv(E::String, E::Int, s(" 42 ")), Ok(i(42)));
         assert_eq!(conv(E::String, E::Int, s("x")), Err(Fault::Conversion));
         assert_eq!(

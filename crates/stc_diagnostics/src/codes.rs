@@ -419,6 +419,13 @@ type, which it hides inside this POU.";
 CONCAT...). Every call of that name in the project then calls this function,
 with its own parameter types, instead of the standard one; give it another
 name unless that is what you want.";
+    W0112 Warning "conversion not in the standard"
+"`BOOL_TO_REAL`, `BOOL_TO_LREAL`, `REAL_TO_BOOL` and `LREAL_TO_BOOL` are not
+among the conversions of IEC 61131-3 (Table 22 of the 3rd edition), but
+MatIEC, Beremiz and CODESYS provide them and programs use them. stc accepts
+them with this warning: BOOL gives 0.0 or 1.0; a REAL or LREAL gives TRUE
+when it is not zero (NaN too). `BOOL_TO_INT` then `INT_TO_REAL` is the
+portable spelling.";
 }
 
 #[cfg(test)]

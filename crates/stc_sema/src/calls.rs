@@ -740,6 +740,23 @@ impl<'a> Sema<'a> {
                     self.consts.remove(&e);
                     return TypeId::ERROR;
                 }
+                if stc_values::conversion_is_extension(from, to) {
+                    let msg = format!(
+                        "{}_TO_{} is not a conversion of IEC 61131-3",
+                        from.name(),
+                        to.name()
+                    );
+                    let help = if to == ElemType::Bool {
+                        "compare instead: `x <> 0.0`".to_string()
+                    } else {
+                        format!("portable: BOOL_TO_INT, then INT_TO_{}", to.name())
+                    };
+                    self.emit(
+                        Diagnostic::new(Code::W0112, span, msg)
+                            .with_label("accepted: MatIEC, Beremiz and CODESYS have it")
+                            .with_help(help),
+                    );
+                }
             }
         }
         if en.is_some() || eno.is_some() {

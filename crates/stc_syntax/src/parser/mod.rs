@@ -512,9 +512,8 @@ impl<'a> Parser<'a> {
             k if k.is_reserved_word()
                 && (self.reserved_name_plausible() || !starts_construct(k)) =>
             {
-                let d = if soft_reserved_word(k) {
-                    // Reserved only by the 3rd edition (or only meaningful
-                    // after a declaration's type): a name in older code.
+                let d = if third_edition_word(k) {
+                    // Reserved only by the 3rd edition: a name in older code.
                     Diagnostic::new(
                         Code::W0009,
                         t.span(),
@@ -525,6 +524,18 @@ impl<'a> Parser<'a> {
                     )
                     .with_label("3rd-edition word")
                     .with_help("this looks like 2nd-edition code: use --std iec2")
+                } else if soft_reserved_word(k) {
+                    // An edge qualifier only means something after a
+                    // declaration's type: as a name it is unambiguous.
+                    Diagnostic::new(
+                        Code::W0009,
+                        t.span(),
+                        format!(
+                            "`{}` is an edge qualifier; accepted as a name",
+                            self.text_of(t)
+                        ),
+                    )
+                    .with_label("reserved word")
                 } else {
                     Diagnostic::new(
                         Code::E0022,

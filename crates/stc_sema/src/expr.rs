@@ -1086,7 +1086,7 @@ impl<'a> Sema<'a> {
         }
     }
 
-    fn binary(
+    pub(crate) fn binary(
         &mut self,
         e: ExprId,
         op: BinaryOp,

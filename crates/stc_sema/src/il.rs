@@ -88,6 +88,9 @@ impl<'a> Sema<'a> {
                 _ => None,
             })
             .collect();
+        // A jump to a label that does not exist (E1003) may have meant any
+        // label: none is then said to be unreachable.
+        let lost_jump = jumped.iter().any(|s| !labels.contains_key(s));
 
         let scope = Scope::Pou(p);
         let mut forward: FxHashMap<Symbol, Vec<Cr>> = FxHashMap::default();
@@ -103,7 +106,8 @@ impl<'a> Sema<'a> {
                 }
                 cr = join(&incoming, l.span);
                 at_label.insert(l.sym, cr);
-                reachable = reachable || jumped.contains(&l.sym);
+                reachable = reachable || lost_jump || jumped.contains(&l.sym);
+                unreachable_reported = false;
                 // Values known before the label may not hold when a jump
                 // arrives.
                 self.body.known.clear();
@@ -133,7 +137,7 @@ impl<'a> Sema<'a> {
             };
             if il_needs_bool(ins) && ty != TypeId::ERROR && !self.types.is_bool(ty) {
                 let shown = self.tname(ty);
-                let what = il_op_name(ins);
+                let what = self.il_op_name(ins);
                 self.emit(
                     Diagnostic::new(
                         Code::E1002,
@@ -268,10 +272,24 @@ impl<'a> Sema<'a> {
                         _ => *rhs,
                     }
                 }
-                ExprKind::Call { args, .. } => match args.get(1).map(|a| &a.kind) {
-                    Some(ArgKind::Positional(x)) => *x,
-                    _ => return None,
-                },
+                ExprKind::Call { callee, args } => {
+                    // A user function: the type of its first input.
+                    if let ExprKind::Name(f) = &self.ast.expr(*callee).kind {
+                        if let Some(crate::analyzer::GlobalName::Pou(q)) =
+                            self.names.get(&f.sym).copied()
+                        {
+                            self.resolve_pou(q);
+                            let def = &self.pous[q.0 as usize];
+                            if def.kind == stc_syntax::ast::PouKind::Function {
+                                return def.positional_params().first().map(|v| def.var(*v).ty);
+                            }
+                        }
+                    }
+                    match args.get(1).map(|a| &a.kind) {
+                        Some(ArgKind::Positional(x)) => *x,
+                        _ => return None,
+                    }
+                }
                 _ => return None,
             },
             _ => return None,
@@ -287,7 +305,7 @@ impl<'a> Sema<'a> {
 
     /// E1001 at an instruction that reads an undefined current result.
     fn il_undefined(&mut self, ins: &IlInstr, why: Why) {
-        let what = il_op_name(ins);
+        let what = self.il_op_name(ins);
         let mut d = Diagnostic::new(
             Code::E1001,
             ins.span,
@@ -309,7 +327,9 @@ impl<'a> Sema<'a> {
     /// result: it must bring the type the label has.
     fn il_backward(&mut self, ins: &IlInstr, label: Symbol, span: Span, cr: Cr, there: Option<Cr>) {
         let poisoned = |c: Option<Cr>| c == Some(Cr::Ty(TypeId::ERROR));
-        if poisoned(Some(cr)) || poisoned(there) || there == Some(cr) {
+        // (An undefined one was reported where the label's code reads it.)
+        let undefined = matches!(there, None | Some(Cr::Undefined(_)));
+        if poisoned(Some(cr)) || poisoned(there) || undefined || there == Some(cr) {
             return;
         }
         let text = |s: &Self, c: Cr| match c {
@@ -334,6 +354,21 @@ impl<'a> Sema<'a> {
                 "the instruction at `{name}` reads the current result: load it there, or jump with the same type"
             )),
         );
+    }
+
+    /// The operator of an instruction as written in messages.
+    fn il_op_name(&self, ins: &IlInstr) -> String {
+        match &ins.op {
+            IlOp::None => String::new(),
+            IlOp::Simple { op, .. } => op.name().to_string(),
+            IlOp::Paren { op, .. } => format!("{}(", op.name()),
+            IlOp::Call { name, .. } | IlOp::FormalCall { name, .. } => {
+                self.spelled(name.sym, name.span)
+            }
+            IlOp::Cal { op, .. } => format!("CAL{}", op.suffix()),
+            IlOp::Jump { op, .. } => format!("JMP{}", op.suffix()),
+            IlOp::Ret { op, .. } => format!("RET{}", op.suffix()),
+        }
     }
 
     /// Whether the meaning of an instruction reads the current result.
@@ -438,15 +473,4 @@ fn il_needs_bool(ins: &IlInstr) -> bool {
     }
 }
 
-/// The operator of an instruction as written in messages.
-fn il_op_name(ins: &IlInstr) -> String {
-    match &ins.op {
-        IlOp::None => String::new(),
-        IlOp::Simple { op, .. } => op.name().to_string(),
-        IlOp::Paren { op, .. } => format!("{}(", op.name()),
-        IlOp::Call { .. } | IlOp::FormalCall { .. } => "function call".to_string(),
-        IlOp::Cal { op, .. } => format!("CAL{}", op.suffix()),
-        IlOp::Jump { op, .. } => format!("JMP{}", op.suffix()),
-        IlOp::Ret { op, .. } => format!("RET{}", op.suffix()),
-    }
-}
+

@@ -206,7 +206,14 @@ impl Parser<'_> {
         };
         let needs_operand = !matches!(op, IlOperator::Not);
         if needs_operand && operand.is_none() {
-            self.expected(&format!("an operand after `{}`", op.name()));
+            self.report_always(
+                Diagnostic::new(
+                    Code::E0020,
+                    op_span,
+                    format!("`{}` needs an operand on its line", op.name()),
+                )
+                .with_label("operand missing"),
+            );
         }
         if !needs_operand && operand.is_some() {
             let span = operand.map(|o| self.expr_span(o)).unwrap_or(op_span);
@@ -631,13 +638,11 @@ impl Parser<'_> {
                     break;
                 }
                 let value = if self.at(TokenKind::LParen) {
+                    // A parameter's sequence has no operand after its `(`
+                    // (seed 003: `'(' EOL simple_instr_list ')'`); its
+                    // first instruction may share the `(`'s line.
                     let inner_open = self.bump().span();
-                    let operand = if self.il_line_end() {
-                        None
-                    } else {
-                        Some(self.il_operand())
-                    };
-                    let (body, value) = self.il_sequence(operand, inner_open);
+                    let (body, value) = self.il_sequence(None, inner_open);
                     let value = value.unwrap_or_else(|| self.error_expr(inner_open));
                     IlArgValue::List { body, value }
                 } else {

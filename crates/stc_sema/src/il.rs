@@ -23,7 +23,7 @@
 use rustc_hash::FxHashMap;
 use stc_diagnostics::{Code, Diagnostic, Span};
 use stc_syntax::ast::{
-    ArgKind, ExprId, ExprKind, IlBody, IlCond, IlInstr, IlOp, IlOperator, IlSem, Stmt, StmtKind,
+    ArgKind, BinaryOp, ExprId, ExprKind, IlBody, IlCond, IlInstr, IlOp, IlOperator, IlSem, Stmt, StmtKind,
 };
 use stc_syntax::Symbol;
 
@@ -266,11 +266,31 @@ impl<'a> Sema<'a> {
                 _ => return None,
             },
             IlSem::Load(w) => match &self.ast.expr(*w).kind {
-                ExprKind::Binary { lhs, rhs, .. } if self.has_cr(*lhs) => {
-                    match &self.ast.expr(*rhs).kind {
+                // NOT keeps the type: ask the instruction after it.
+                ExprKind::Unary { operand, .. } if self.has_cr(*operand) => {
+                    let at = rest.iter().position(|x| std::ptr::eq(x, next))?;
+                    return self.il_expected_after(&rest[at + 1..], scope);
+                }
+                ExprKind::Binary { op, lhs, rhs } if self.has_cr(*lhs) => {
+                    let rhs = match &self.ast.expr(*rhs).kind {
                         ExprKind::Unary { operand, .. } => *operand,
                         _ => *rhs,
+                    };
+                    let keeps_type = !matches!(
+                        op,
+                        BinaryOp::Eq
+                            | BinaryOp::Ne
+                            | BinaryOp::Lt
+                            | BinaryOp::Le
+                            | BinaryOp::Gt
+                            | BinaryOp::Ge
+                    );
+                    // `LD 5.0` `DIV 4.0` `ST r`: the type comes after.
+                    if keeps_type && self.is_flexible(rhs, scope) {
+                        let at = rest.iter().position(|x| std::ptr::eq(x, next))?;
+                        return self.il_expected_after(&rest[at + 1..], scope);
                     }
+                    rhs
                 }
                 ExprKind::Call { callee, args } => {
                     // A user function: the type of its first input.
@@ -285,9 +305,25 @@ impl<'a> Sema<'a> {
                             }
                         }
                     }
+                    // A standard function: its other operands, else (ABS,
+                    // MAX of literals...) what comes after; a conversion
+                    // names its input type itself.
+                    let conversion = match &self.ast.expr(*callee).kind {
+                        ExprKind::Name(f) => {
+                            let n = self.interner.key(f.sym).to_ascii_uppercase();
+                            n.contains("_TO_") || n == "TRUNC"
+                        }
+                        _ => true,
+                    };
+                    if conversion {
+                        return None;
+                    }
                     match args.get(1).map(|a| &a.kind) {
-                        Some(ArgKind::Positional(x)) => *x,
-                        _ => return None,
+                        Some(ArgKind::Positional(x)) if !self.is_flexible(*x, scope) => *x,
+                        _ => {
+                            let at = rest.iter().position(|x| std::ptr::eq(x, next))?;
+                            return self.il_expected_after(&rest[at + 1..], scope);
+                        }
                     }
                 }
                 _ => return None,

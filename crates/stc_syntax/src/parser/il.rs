@@ -407,7 +407,13 @@ impl Parser<'_> {
     /// `op( [operand]` EOL sequence `)`.
     fn il_paren(&mut self, op: IlOperator, op_span: Span) -> (IlOp, IlSem) {
         let open = self.bump().span();
-        let operand = if self.il_line_end() {
+        // `AND( LD b` with the first instruction on the `(`'s line (an
+        // operand there is alone on it).
+        let instr_here = self.at(TokenKind::Ident)
+            && IlOperator::from_word(self.text_of(self.tok())).is_some()
+            && !self.newline_between(self.tok(), self.nth(1))
+            && !matches!(self.nth_kind(1), TokenKind::RParen | TokenKind::Eof);
+        let operand = if self.il_line_end() || instr_here {
             None
         } else {
             Some(self.il_operand())

@@ -376,7 +376,8 @@ the input to a local variable instead.";
 inputs, outputs and globals are not reported.";
     W0105 Warning "unreachable statement"
 "The statement comes after RETURN, EXIT or CONTINUE in the same block and can
-never run.";
+never run; in Instruction List, the instruction comes after JMP or RET and
+carries no label that a jump names.";
     W0106 Warning "function result may be unassigned"
 "On some path through the FUNCTION its result (the variable named like the
 function) is never assigned, so the function returns the type's initial value

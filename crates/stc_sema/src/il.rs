@@ -23,7 +23,8 @@
 use rustc_hash::FxHashMap;
 use stc_diagnostics::{Code, Diagnostic, Span};
 use stc_syntax::ast::{
-    ArgKind, BinaryOp, ExprId, ExprKind, IlBody, IlCond, IlInstr, IlOp, IlOperator, IlSem, Stmt, StmtKind,
+    ArgKind, BinaryOp, ExprId, ExprKind, IlBody, IlCond, IlInstr, IlOp, IlOperator, IlSem, Stmt,
+    StmtKind,
 };
 use stc_syntax::Symbol;
 
@@ -508,5 +509,3 @@ fn il_needs_bool(ins: &IlInstr) -> bool {
         _ => false,
     }
 }
-
-

@@ -163,8 +163,18 @@ impl<'a> Sema<'a> {
                     };
                     let t = self.check_expr(*v, expected, scope);
                     if matches!(self.types.kind(t), TypeKind::Fb(_)) {
-                        // An instance is no value (E0409 said so already
-                        // where it applies).
+                        let span = self.ast.expr(*v).span;
+                        self.emit(
+                            Diagnostic::new(
+                                Code::E0409,
+                                span,
+                                "a function block instance cannot be loaded: it is not a value",
+                            )
+                            .with_label("a function block instance")
+                            .with_help(
+                                "load one of its outputs (`LD inst.Q`), or call it with CAL",
+                            ),
+                        );
                         cr = Cr::Ty(TypeId::ERROR);
                     } else {
                         cr = Cr::Ty(t);

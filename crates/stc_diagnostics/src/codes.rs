@@ -124,7 +124,7 @@ thousands of nested parentheses). Split the expression with intermediate
 variables.";
     E0030 Error "not supported yet"
 "The construct is valid in some IEC 61131-3 dialect but stc does not support
-it yet: Instruction List bodies, Sequential Function Charts, the
+it yet: Sequential Function Charts, the
 object-oriented extensions (METHOD, PROPERTY, ACTION, INTERFACE, EXTENDS,
 IMPLEMENTS), POINTER TO, REFERENCE TO, REF_TO and the dereference `^`,
 `REF=`, UNION types, VAR_STAT/VAR_INST sections, variable-length arrays
@@ -382,6 +382,26 @@ declaration that is too large, once: the users of a type reported at its
 declaration are not reported again. Make the arrays smaller, or split the
 data over several variables.";
 
+    E1001 Error "the current result is undefined here"
+"An Instruction List instruction reads the current result (the accumulator
+that LD sets and operators combine) where it has no value: at the start of
+the body, after a CAL (a function block call leaves the current result
+undefined), at a label reached with current results of different types (the
+instruction before it and the jumps to it disagree), at a label reached only
+by jumps written after it, or in a parenthesised sequence before its first
+value. Start the instruction sequence with LD (or LDN). A jump written after
+its label must bring the type the label already has when the instruction
+after the label reads the current result.";
+    E1002 Error "the current result is not BOOL"
+"S, R, JMPC, JMPCN, CALC, CALCN, RETC and RETCN test the current result,
+which must then be BOOL. Load a BOOL first, or compare (`GT 0`) to get one.";
+    E1003 Error "jump to an undefined label"
+"JMP, JMPC and JMPCN name a label that no instruction of the same body
+carries (`label: instruction`). Labels are local to one POU body.";
+    E1004 Error "label defined twice"
+"Two instructions of one Instruction List body carry the same label, so a
+jump to it would be ambiguous. Rename one of them.";
+
     W0101 Warning "result depends on evaluation order"
 "A variable is written by an output parameter (`=>`) or VAR_IN_OUT of one call
 and read by another argument of the same enclosing call. IEC 61131-3 does not
@@ -403,7 +423,8 @@ the input to a local variable instead.";
 inputs, outputs and globals are not reported.";
     W0105 Warning "unreachable statement"
 "The statement comes after RETURN, EXIT or CONTINUE in the same block and can
-never run.";
+never run; in Instruction List, the instruction comes after JMP or RET and
+carries no label that a jump names.";
     W0106 Warning "function result may be unassigned"
 "On some path through the FUNCTION its result (the variable named like the
 function) is never assigned, so the function returns the type's initial value

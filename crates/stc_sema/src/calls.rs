@@ -1251,7 +1251,7 @@ impl<'a> Sema<'a> {
                 ExprKind::Index { base, .. } => root = *base,
                 // `p^ := v` and a target that did not parse: reported
                 // already; the names in it are still resolved.
-                ExprKind::Deref(_) | ExprKind::Error => {
+                ExprKind::Deref(_) | ExprKind::Error | ExprKind::IlCr => {
                     self.check_expr(target, Some(TypeId::ERROR), scope);
                     return TypeId::ERROR;
                 }

@@ -157,17 +157,9 @@ impl Parser<'_> {
             }
         }
         let mut body = Vec::new();
+        let mut il = None;
         if self.at_il_body() {
-            let span = self.tok().span();
-            self.unsupported(span, "Instruction List bodies are");
-            self.pou_partial = true;
-            while !self.at(TokenKind::Eof)
-                && !is_item_end(self.kind())
-                && !is_item_start(self.kind())
-            {
-                self.bump();
-            }
-            self.superseded.push(span.to(self.prev().span()));
+            il = Some(self.il_body());
         } else {
             body = self.stmt_list(false);
         }
@@ -217,6 +209,7 @@ impl Parser<'_> {
             return_type,
             var_blocks,
             body,
+            il,
             span: opener.to(self.prev().span()),
             pragmas,
             extends,

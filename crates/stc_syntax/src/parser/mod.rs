@@ -17,6 +17,7 @@
 
 mod decl;
 mod expr;
+mod il;
 mod stmt;
 
 use stc_diagnostics::{Code, Diagnostic, Span};

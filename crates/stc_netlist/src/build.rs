@@ -56,7 +56,7 @@ fn key_of(k: &Kind) -> Option<Key> {
 }
 
 /// A pure component: its kind, its inputs and its result type.
-type MemoKey = (Key, Vec<NetId>, ElemType);
+type MemoKey = (Key, [NetId; 3], ElemType);
 
 #[derive(Default)]
 pub struct Builder {
@@ -143,22 +143,37 @@ impl Builder {
     /// not fault, shared with an equal one made before. Returns X1 and, for
     /// a component that may fault, F1.
     pub fn op(&mut self, kind: Kind, inputs: Vec<NetId>, out: ElemType) -> (NetId, Option<NetId>) {
-        let in_tys: Vec<ElemType> = inputs.iter().map(|n| self.ty(*n)).collect();
-        let consts: Option<Vec<Value>> = inputs.iter().map(|n| self.known(*n).cloned()).collect();
-        if let Some(vals) = consts.filter(|_| !matches!(kind, Kind::Clock)) {
+        let all_known = inputs.iter().all(|n| self.known(*n).is_some());
+        if all_known && !matches!(kind, Kind::Clock) {
+            let in_tys: Vec<ElemType> = inputs.iter().map(|n| self.ty(*n)).collect();
+            let vals: Vec<Value> = inputs
+                .iter()
+                .filter_map(|n| self.known(*n).cloned())
+                .collect();
             let (v, fault) = eval(&kind, &in_tys, &vals, out);
             if fault.is_none() {
                 return (self.konst(out, v), None);
             }
         }
-        let key = key_of(&kind).map(|k| (k, inputs.clone(), out));
+        // (Components with more than three inputs are not shared: rare,
+        // and a key without allocation is worth more.)
+        let key = match (key_of(&kind), inputs.as_slice()) {
+            (Some(k), ins) if ins.len() <= 3 => {
+                let mut arr = [NetId(u32::MAX); 3];
+                arr[..ins.len()].copy_from_slice(ins);
+                Some((k, arr, out))
+            }
+            _ => None,
+        };
         if let Some(hit) = key.as_ref().and_then(|k| self.memo.get(k)) {
             return *hit;
         }
+        let in_tys: Vec<ElemType> = inputs.iter().map(|n| self.ty(*n)).collect();
         let faults = may_fault(&kind, &in_tys, out);
         let x = self.net(out, None);
         let f = faults.then(|| self.net(ElemType::Usint, None));
-        let mut outputs = vec![x];
+        let mut outputs = Vec::with_capacity(2);
+        outputs.push(x);
         outputs.extend(f);
         self.c.components.push(Component {
             kind,

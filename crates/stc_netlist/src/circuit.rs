@@ -30,14 +30,23 @@ pub enum Kind {
     /// An input module: a value from outside the circuit (a program's
     /// VAR_INPUT, a `%I` variable), held until the environment changes it;
     /// `init` before it ever does. Output X1.
-    Input { name: String, init: Value },
+    Input {
+        name: String,
+        init: Value,
+        /// Other paths of the same variable (a located variable's name).
+        aliases: Vec<String>,
+    },
     /// The task clock (TIME or LTIME): the time of the cycle. Output X1.
     Clock,
     /// A constant. Output X1.
     Const(Value),
     /// A unit delay: X1 is the value A1 had at the end of the previous
     /// cycle (`init` in the first). The state of the program.
-    Register { name: String, init: Value },
+    Register {
+        name: String,
+        init: Value,
+        aliases: Vec<String>,
+    },
     /// An output module: the value of A1 at the end of the cycle.
     Output { name: String },
     /// A run-time fault of the program: when A2 (BOOL, the statement is

@@ -50,9 +50,21 @@ impl Simulator {
         let mut state = vec![None; c.components.len()];
         for (i, comp) in c.components.iter().enumerate() {
             match &comp.kind {
-                Kind::Input { name, init } | Kind::Register { name, init } => {
+                Kind::Input {
+                    name,
+                    init,
+                    aliases,
+                }
+                | Kind::Register {
+                    name,
+                    init,
+                    aliases,
+                } => {
                     state[i] = Some(init.clone());
                     names.insert(name.to_ascii_lowercase(), i);
+                    for a in aliases {
+                        names.insert(a.to_ascii_lowercase(), i);
+                    }
                 }
                 _ => {}
             }

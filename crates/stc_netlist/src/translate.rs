@@ -11,16 +11,22 @@
 //!
 //! The body is translated by symbolic execution into static single
 //! assignment form: the current value of each cell is a net, and each
-//! assignment gives the cell a new net. Control flow is *predicated*: the
-//! translation carries `alive`, the BOOL net that is TRUE when execution
-//! reaches the current statement, and an assignment under a condition is a
-//! two-way selector between the new value and the old one (so a variable
-//! may be assigned any number of times, on any path). IF and CASE narrow
-//! `alive` for their branches and join them again; RETURN, EXIT and
-//! CONTINUE clear it until the end of their POU, loop or iteration; loops
-//! are unrolled for as long as the number of iterations is decided by
-//! constants (the FOR of the IR counts with folded constants), and
-//! refused otherwise. Functions and function block bodies (user FBs and the
+//! assignment gives the cell a new net (so a variable may be assigned any
+//! number of times, on any path). The two branches of an IF (a CASE is a
+//! chain of them) are translated from the same values, and where they join
+//! every cell either branch changed becomes a two-way selector on the
+//! condition between the branches' values. RETURN, EXIT and CONTINUE
+//! are *jumps*: each records its condition and the values of the cells
+//! changed since the start of its POU, loop or iteration, and where the
+//! jump lands those values are selected back for the paths that jumped (so
+//! what the rest of the body computes on a path that left is never
+//! seen). `alive`, the exact condition that execution reaches the
+//! statement (the branch conditions less the paths that jumped or
+//! faulted), enables
+//! the fault modules and decides which code is dead. Loops are unrolled for
+//! as long as `alive` at the start of an iteration is not the constant
+//! FALSE, which the FOR of the IR (with its folded constant bounds)
+//! decides; a loop whose end depends on run-time values is refused. Functions and function block bodies (user FBs and the
 //! standard ones, which are ST in the prelude) are inlined at each call,
 //! with the FB's variables being the cells of its instance.
 //!
@@ -122,7 +128,8 @@ enum Slot {
     Leaf(usize),
     /// A STRING or WSTRING leaf: refused when used.
     Text,
-    Agg(Vec<SlotId>),
+    /// (Shared, so reading a slot does not copy its children.)
+    Agg(std::rc::Rc<[SlotId]>),
     /// A variable an instance does not hold (a frame variable or a reference).
     Absent,
 }
@@ -139,6 +146,8 @@ enum CellKind {
 
 struct Cell {
     kind: CellKind,
+    /// Its input module or register (component index).
+    comp: Option<usize>,
     /// Also shown by an output module.
     output: bool,
 }
@@ -161,14 +170,29 @@ enum Bind {
     None,
 }
 
+/// A jump (RETURN, EXIT, CONTINUE): the paths that took it, and where the
+/// journal was then (the values of the cells there are found from it when
+/// the jump lands).
+struct Jump {
+    cond: NetId,
+    pos: usize,
+}
+
+struct LoopCtx {
+    /// The journal position at the loop's start and at its iteration's.
+    start: usize,
+    iter_start: usize,
+    breaks: Vec<Jump>,
+    continues: Vec<Jump>,
+}
+
 struct Frame {
     pou: PouId,
     binds: Vec<Bind>,
-    /// Paths that executed RETURN.
-    ret: NetId,
-    /// Per enclosing loop: paths that left it (EXIT) and paths that
-    /// continued it (CONTINUE) in the current iteration.
-    loops: Vec<(NetId, NetId)>,
+    /// The journal position at the call's start, and the RETURNs.
+    start: usize,
+    ret: Vec<Jump>,
+    loops: Vec<LoopCtx>,
     instance: String,
 }
 
@@ -187,6 +211,8 @@ struct Tr<'m> {
     env: Vec<NetId>,
     slots: Vec<Slot>,
     alive: NetId,
+    /// Every change of a cell's value: the cell and its value before.
+    journal: Vec<(usize, NetId)>,
     fals: NetId,
     globals: FxHashMap<usize, SlotId>,
     directs: FxHashMap<String, SlotId>,
@@ -210,6 +236,7 @@ impl<'m> Tr<'m> {
             env: Vec::new(),
             slots: Vec::new(),
             alive: tru,
+            journal: Vec::new(),
             fals,
             globals: FxHashMap::default(),
             directs: FxHashMap::default(),
@@ -275,6 +302,7 @@ impl<'m> Tr<'m> {
                             Kind::Input {
                                 name: name.to_string(),
                                 init: v,
+                                aliases: Vec::new(),
                             },
                             vec![],
                             Some(e),
@@ -286,6 +314,7 @@ impl<'m> Tr<'m> {
                             Kind::Register {
                                 name: name.to_string(),
                                 init: v,
+                                aliases: Vec::new(),
                             },
                             vec![],
                             Some(e),
@@ -294,8 +323,10 @@ impl<'m> Tr<'m> {
                     }
                     Kind2::Temp => (CellKind::Temp, self.b.konst(e, v)),
                 };
+                let comp = (kind != Kind2::Temp).then(|| self.b.components() - 1);
                 self.cells.push(Cell {
                     kind: ck,
+                    comp,
                     output: false,
                 });
                 self.env.push(net);
@@ -319,12 +350,17 @@ impl<'m> Tr<'m> {
                         rest /= n;
                     }
                     idx.reverse();
-                    let text: Vec<String> = idx.iter().map(|i| i.to_string()).collect();
-                    let ename = format!("{name}[{}]", text.join(","));
+                    // (A frame variable needs no name.)
+                    let ename = if kind == Kind2::Temp {
+                        String::new()
+                    } else {
+                        let text: Vec<String> = idx.iter().map(|i| i.to_string()).collect();
+                        format!("{name}[{}]", text.join(","))
+                    };
                     let v = list.get(i as usize).and_then(|v| v.as_ref());
                     kids.push(self.build(elem, &ename, v, kind));
                 }
-                self.slot(Slot::Agg(kids))
+                self.slot(Slot::Agg(kids.into()))
             }
             TypeKind::Struct { fields } => {
                 let mut kids = Vec::with_capacity(fields.len());
@@ -336,10 +372,14 @@ impl<'m> Tr<'m> {
                         _ => None,
                     };
                     let v = given.or(f.init.clone());
-                    let fname = format!("{name}.{}", m.spelled(f.name, f.span));
+                    let fname = if kind == Kind2::Temp {
+                        String::new()
+                    } else {
+                        format!("{name}.{}", m.spelled(f.name, f.span))
+                    };
                     kids.push(self.build(f.ty, &fname, v.as_ref(), kind));
                 }
-                self.slot(Slot::Agg(kids))
+                self.slot(Slot::Agg(kids.into()))
             }
             TypeKind::Fb(p) | TypeKind::Program(p) => {
                 let overrides: Vec<(stc_syntax::Symbol, InitValue)> = match init {
@@ -376,7 +416,7 @@ impl<'m> Tr<'m> {
             let vname = var_name(self.m, pou, v);
             kids.push(self.build(v.ty, &format!("{name}.{vname}"), init.as_ref(), kind));
         }
-        let s = self.slot(Slot::Agg(kids));
+        let s = self.slot(Slot::Agg(kids.into()));
         self.inst_names.insert(s.0, name.to_string());
         s
     }
@@ -392,11 +432,28 @@ impl<'m> Tr<'m> {
         match &self.slots[s.0 as usize] {
             Slot::Leaf(c) => out.push(*c),
             Slot::Agg(k) => {
-                for k in k {
+                for k in k.iter() {
                     self.leaves(*k, out);
                 }
             }
             Slot::Text | Slot::Absent => {}
+        }
+    }
+
+    /// Gives the cell of `s` (an elementary variable) another name.
+    fn alias(&mut self, s: SlotId, alias: String) {
+        let Slot::Leaf(c) = self.slots[s.0 as usize] else {
+            return;
+        };
+        let Some(comp) = self.cells[c].comp else {
+            return;
+        };
+        if let Kind::Input { aliases, .. } | Kind::Register { aliases, .. } =
+            &mut self.b.c.components[comp].kind
+        {
+            if !aliases.contains(&alias) {
+                aliases.push(alias);
+            }
         }
     }
 
@@ -406,7 +463,12 @@ impl<'m> Tr<'m> {
         }
         let g = &self.m.globals[gi];
         let s = match g.location.as_ref().filter(|a| !a.is_incomplete()) {
-            Some(a) => self.direct(a, g.ty, g.init.as_ref()),
+            Some(a) => {
+                let s = self.direct(a, g.ty, g.init.as_ref());
+                let name = self.m.spelled(g.name, g.span).to_string();
+                self.alias(s, name);
+                s
+            }
             None => {
                 let name = self.m.spelled(g.name, g.span).to_string();
                 self.build(g.ty, &name, g.init.as_ref(), Kind2::Reg)
@@ -454,17 +516,20 @@ impl<'m> Tr<'m> {
         let pou = m.pou(p);
         let var = pou.var(v);
         if let Some(a) = var.location.as_ref().filter(|a| !a.is_incomplete()) {
-            return Bind::Slot(self.direct(a, var.ty, var.init.as_ref()));
+            let s = self.direct(a, var.ty, var.init.as_ref());
+            if inst.is_some() {
+                // The variable is also known by its path in the instance.
+                let alias = format!("{frame_name}.{}", var_name(m, pou, var));
+                self.alias(s, alias);
+            }
+            return Bind::Slot(s);
         }
         match var.storage {
             Storage::Instance => match inst.and_then(|i| self.child(i, v.0 as usize)) {
                 Some(s) => Bind::Slot(s),
                 None => Bind::None,
             },
-            Storage::Frame => {
-                let name = format!("{frame_name}.{}", var_name(m, pou, var));
-                Bind::Slot(self.build(var.ty, &name, var.init.as_ref(), Kind2::Temp))
-            }
+            Storage::Frame => Bind::Slot(self.build(var.ty, "", var.init.as_ref(), Kind2::Temp)),
             Storage::Ref if var.section == Section::External => {
                 match m.bind_global(var.name, var.ty, None) {
                     Some(g) => Bind::Slot(self.global(g)),
@@ -496,7 +561,8 @@ impl<'m> Tr<'m> {
         let mut fr = Frame {
             pou: p,
             binds: Vec::new(),
-            ret: self.fals,
+            start: 0,
+            ret: Vec::new(),
             loops: Vec::new(),
             instance: name.to_string(),
         };
@@ -524,7 +590,7 @@ impl<'m> Tr<'m> {
             }
             kids.push(s);
         }
-        let inst = self.slot(Slot::Agg(kids));
+        let inst = self.slot(Slot::Agg(kids.into()));
         for (s, v) in outputs {
             if self.has_text(s) {
                 self.at = (0, 0);
@@ -560,6 +626,8 @@ impl<'m> Tr<'m> {
             fr.binds.push(b);
         }
         self.block(&mut fr, &pou.body)?;
+        let ret = std::mem::take(&mut fr.ret);
+        self.land(0, ret);
         // Registers take the values at the end of the cycle; output modules
         // show them.
         for c in 0..self.cells.len() {
@@ -665,14 +733,9 @@ impl<'m> Tr<'m> {
                 else_body,
             } => {
                 let c = self.bool_net(fr, cond)?;
-                let a0 = self.alive;
-                self.alive = self.b.and(a0, c);
-                self.block(fr, then_body)?;
-                let at = self.alive;
-                let nc = self.b.not(c);
-                self.alive = self.b.and(a0, nc);
-                self.block(fr, else_body)?;
-                self.alive = self.b.or(at, self.alive);
+                self.branch(fr, c, &mut |t, fr| t.block(fr, then_body), &mut |t, fr| {
+                    t.block(fr, else_body)
+                })?;
             }
             StmtKind::Switch {
                 selector,
@@ -680,44 +743,15 @@ impl<'m> Tr<'m> {
                 default,
             } => {
                 let sel = self.scalar_net(fr, selector)?;
-                let t = self.b.ty(sel);
-                let mut rest = self.alive;
-                let mut ends = self.fals;
-                for arm in arms {
-                    let mut c = self.fals;
-                    for &(lo, hi) in &arm.ranges {
-                        let r = if lo == hi {
-                            let k = self.b.konst(t, Value::Int(lo));
-                            self.b
-                                .op(Kind::Binary(BinOp::Eq), vec![sel, k], ElemType::Bool)
-                                .0
-                        } else {
-                            let kl = self.b.konst(t, Value::Int(lo));
-                            let kh = self.b.konst(t, Value::Int(hi));
-                            let ge = self
-                                .b
-                                .op(Kind::Binary(BinOp::Ge), vec![sel, kl], ElemType::Bool)
-                                .0;
-                            let le = self
-                                .b
-                                .op(Kind::Binary(BinOp::Le), vec![sel, kh], ElemType::Bool)
-                                .0;
-                            self.b.and(ge, le)
-                        };
-                        c = self.b.or(c, r);
-                    }
-                    self.alive = self.b.and(rest, c);
-                    self.block(fr, &arm.body)?;
-                    ends = self.b.or(ends, self.alive);
-                    let nc = self.b.not(c);
-                    rest = self.b.and(rest, nc);
-                }
-                self.alive = rest;
-                self.block(fr, default)?;
-                self.alive = self.b.or(ends, self.alive);
+                self.arms(fr, sel, arms, default)?;
             }
             StmtKind::Loop { body, latch } => {
-                fr.loops.push((self.fals, self.fals));
+                fr.loops.push(LoopCtx {
+                    start: self.journal.len(),
+                    iter_start: self.journal.len(),
+                    breaks: Vec::new(),
+                    continues: Vec::new(),
+                });
                 let mut n = 0usize;
                 while self.alive != self.fals {
                     n += 1;
@@ -732,34 +766,42 @@ impl<'m> Tr<'m> {
                             ),
                         ));
                     }
+                    self.at = (s.line, s.col);
                     self.budget(fr)?;
-                    self.block(fr, body)?;
-                    let cont = fr.loops.last().map(|l| l.1).unwrap_or(self.fals);
-                    self.alive = self.b.or(self.alive, cont);
+                    let here = self.journal.len();
                     if let Some(l) = fr.loops.last_mut() {
-                        l.1 = self.fals;
+                        l.iter_start = here;
                     }
+                    self.block(fr, body)?;
+                    let cont = fr
+                        .loops
+                        .last_mut()
+                        .map(|l| std::mem::take(&mut l.continues))
+                        .unwrap_or_default();
+                    self.land(here, cont);
                     self.block(fr, latch)?;
                 }
-                let (brk, _) = fr.loops.pop().unwrap_or((self.fals, self.fals));
-                self.alive = self.b.or(self.alive, brk);
+                if let Some(l) = fr.loops.pop() {
+                    self.land(l.start, l.breaks);
+                }
             }
             StmtKind::Break => {
-                let a = self.alive;
+                let j = self.jump();
                 if let Some(l) = fr.loops.last_mut() {
-                    l.0 = self.b.or(l.0, a);
+                    l.breaks.push(j);
                 }
                 self.alive = self.fals;
             }
             StmtKind::Continue => {
-                let a = self.alive;
+                let j = self.jump();
                 if let Some(l) = fr.loops.last_mut() {
-                    l.1 = self.b.or(l.1, a);
+                    l.continues.push(j);
                 }
                 self.alive = self.fals;
             }
             StmtKind::Return => {
-                fr.ret = self.b.or(fr.ret, self.alive);
+                let j = self.jump();
+                fr.ret.push(j);
                 self.alive = self.fals;
             }
             StmtKind::Fault(kind) => {
@@ -771,6 +813,178 @@ impl<'m> Tr<'m> {
             }
         }
         Ok(())
+    }
+
+    /// IF `c` THEN `then` ELSE `els`: each branch is translated from the
+    /// values before the IF, and every cell either changes becomes a
+    /// selector on `c` between the two branches' values.
+    #[allow(clippy::type_complexity)]
+    fn branch(
+        &mut self,
+        fr: &mut Frame,
+        c: NetId,
+        then: &mut dyn FnMut(&mut Self, &mut Frame) -> R<()>,
+        els: &mut dyn FnMut(&mut Self, &mut Frame) -> R<()>,
+    ) -> R<()> {
+        let a0 = self.alive;
+        let start = self.journal.len();
+        let then_entry = self.b.and(a0, c);
+        self.alive = then_entry;
+        if self.alive != self.fals {
+            then(self, fr)?;
+        }
+        let at = self.alive;
+        // The THEN values, and the cells back to their values before.
+        let (order, entry) = self.changed_since(start);
+        let then_vals: Vec<NetId> = order.iter().map(|c| self.env[*c]).collect();
+        for &cell in &order {
+            self.set_cell(cell, entry[&cell]);
+        }
+        let mid = self.journal.len();
+        let nc = self.b.not(c);
+        let else_alive = self.b.and(a0, nc);
+        self.alive = else_alive;
+        if self.alive != self.fals {
+            els(self, fr)?;
+        }
+        let ae = self.alive;
+        let (else_order, else_entry) = self.changed_since(mid);
+        let mut cells: Vec<(usize, NetId)> = order.into_iter().zip(then_vals).collect();
+        for cell in else_order {
+            if !entry.contains_key(&cell) {
+                cells.push((cell, else_entry[&cell]));
+            }
+        }
+        for (cell, vt) in cells {
+            let ve = self.env[cell];
+            let v = if at == self.fals {
+                ve
+            } else if ae == self.fals {
+                vt
+            } else {
+                self.b.switch(c, vt, ve)
+            };
+            self.set_cell(cell, v);
+        }
+        // (When neither branch jumped or faulted, every path that came in
+        // goes on: no gate needed.)
+        self.alive = if at == then_entry && ae == else_alive {
+            a0
+        } else {
+            self.b.or(at, ae)
+        };
+        Ok(())
+    }
+
+    /// The cells changed since journal position `start`, in order, with
+    /// their values then.
+    fn changed_since(&self, start: usize) -> (Vec<usize>, FxHashMap<usize, NetId>) {
+        let mut entry: FxHashMap<usize, NetId> = FxHashMap::default();
+        let mut order = Vec::new();
+        for &(c, old) in &self.journal[start..] {
+            if let std::collections::hash_map::Entry::Vacant(e) = entry.entry(c) {
+                e.insert(old);
+                order.push(c);
+            }
+        }
+        (order, entry)
+    }
+
+    /// CASE: the first arm whose ranges hold the selector, as a chain of
+    /// branches.
+    fn arms(
+        &mut self,
+        fr: &mut Frame,
+        sel: NetId,
+        arms: &[stc_ir::SwitchArm],
+        default: &[Stmt],
+    ) -> R<()> {
+        let Some((arm, rest)) = arms.split_first() else {
+            return self.block(fr, default);
+        };
+        let t = self.b.ty(sel);
+        let mut c = self.fals;
+        for &(lo, hi) in &arm.ranges {
+            let r = if lo == hi {
+                let k = self.b.konst(t, Value::Int(lo));
+                self.b
+                    .op(Kind::Binary(BinOp::Eq), vec![sel, k], ElemType::Bool)
+                    .0
+            } else {
+                let kl = self.b.konst(t, Value::Int(lo));
+                let kh = self.b.konst(t, Value::Int(hi));
+                let ge = self
+                    .b
+                    .op(Kind::Binary(BinOp::Ge), vec![sel, kl], ElemType::Bool)
+                    .0;
+                let le = self
+                    .b
+                    .op(Kind::Binary(BinOp::Le), vec![sel, kh], ElemType::Bool)
+                    .0;
+                self.b.and(ge, le)
+            };
+            c = self.b.or(c, r);
+        }
+        self.branch(fr, c, &mut |t, fr| t.block(fr, &arm.body), &mut |t, fr| {
+            t.arms(fr, sel, rest, default)
+        })
+    }
+
+    /// A jump from here: the paths alive now.
+    fn jump(&mut self) -> Jump {
+        Jump {
+            cond: self.alive,
+            pos: self.journal.len(),
+        }
+    }
+
+    /// Where jumps land (their region began at journal position `start`):
+    /// for the paths that took one, each cell changed since then gets the
+    /// value it had at the jump; those paths are alive again.
+    fn land(&mut self, start: usize, jumps: Vec<Jump>) {
+        if jumps.is_empty() {
+            return;
+        }
+        // Each changed cell's changes: (position, value before), in order.
+        let mut changes: FxHashMap<usize, Vec<(usize, NetId)>> = FxHashMap::default();
+        let mut order = Vec::new();
+        for (i, &(c, old)) in self.journal[start..].iter().enumerate() {
+            let e = changes.entry(c).or_insert_with(|| {
+                order.push(c);
+                Vec::new()
+            });
+            e.push((start + i, old));
+        }
+        let before: Vec<NetId> = order.iter().map(|c| self.env[*c]).collect();
+        for j in jumps {
+            for (&c, &now) in order.iter().zip(&before) {
+                let list = &changes[&c];
+                // The value at the jump: the one the first change after it
+                // replaced, or the value now.
+                let k = list.partition_point(|(p, _)| *p < j.pos);
+                let v = list.get(k).map(|(_, old)| *old).unwrap_or(now);
+                let cur = self.env[c];
+                if v != now {
+                    let n = self.b.switch(j.cond, v, cur);
+                    self.env[c] = n;
+                }
+            }
+            self.alive = self.b.or(self.alive, j.cond);
+        }
+        // The merged values are changes like any other.
+        for (&c, &b) in order.iter().zip(&before) {
+            if self.env[c] != b {
+                self.journal.push((c, b));
+            }
+        }
+    }
+
+    fn set_cell(&mut self, c: usize, n: NetId) {
+        let old = self.env[c];
+        if old != n {
+            self.journal.push((c, old));
+            self.env[c] = n;
+        }
     }
 
     fn output(&mut self, fr: &mut Frame, o: &Output, v: Val) -> R<()> {
@@ -858,7 +1072,8 @@ impl<'m> Tr<'m> {
         let mut callee = Frame {
             pou: fb,
             binds: Vec::with_capacity(pou.vars.len()),
-            ret: self.fals,
+            start: self.journal.len(),
+            ret: Vec::new(),
             loops: Vec::new(),
             instance: iname.clone(),
         };
@@ -870,12 +1085,9 @@ impl<'m> Tr<'m> {
             };
             callee.binds.push(b);
         }
-        let a0 = self.alive;
         self.block(&mut callee, &pou.body)?;
-        self.alive = self.b.or(self.alive, callee.ret);
-        // (A path that returned is alive again after the call; one that
-        // faulted is not, and nothing after it matters.)
-        let _ = a0;
+        let ret = std::mem::take(&mut callee.ret);
+        self.land(callee.start, ret);
         self.at = at;
         self.depth -= 1;
         Ok(())
@@ -906,11 +1118,11 @@ impl<'m> Tr<'m> {
         }
         let m = self.m;
         let pou = m.pou(func);
-        let fname = format!("{}.{}", fr.instance, m.spelled(pou.name, pou.name_span));
         let mut callee = Frame {
             pou: func,
             binds: Vec::with_capacity(pou.vars.len()),
-            ret: self.fals,
+            start: self.journal.len(),
+            ret: Vec::new(),
             loops: Vec::new(),
             instance: fr.instance.clone(),
         };
@@ -918,7 +1130,7 @@ impl<'m> Tr<'m> {
             let v = VarId(i as u32);
             let b = match bound.iter().find(|(w, _)| *w == v) {
                 Some((_, loc)) => Bind::Loc(loc.clone()),
-                None => self.bind_var(func, v, None, &fname),
+                None => self.bind_var(func, v, None, ""),
             };
             callee.binds.push(b);
         }
@@ -929,7 +1141,8 @@ impl<'m> Tr<'m> {
             }
         }
         self.block(&mut callee, &pou.body)?;
-        self.alive = self.b.or(self.alive, callee.ret);
+        let ret = std::mem::take(&mut callee.ret);
+        self.land(callee.start, ret);
         let result = match pou.result {
             Some(r) => match callee.binds[r.0 as usize].clone() {
                 Bind::Slot(s) => self.read(&callee, &Loc::Fixed(s))?,
@@ -1080,7 +1293,7 @@ impl<'m> Tr<'m> {
             off = self.b.op(Kind::Binary(BinOp::Add), vec![off, d], lint).0;
         }
         let elems = match &self.slots[arr.0 as usize] {
-            Slot::Agg(k) => k.clone(),
+            Slot::Agg(k) => k.to_vec(),
             _ => Vec::new(),
         };
         Ok(Loc::Dyn { idx: off, elems })
@@ -1091,7 +1304,7 @@ impl<'m> Tr<'m> {
             Slot::Leaf(c) => Ok(Val::S(self.env[c])),
             Slot::Agg(k) => {
                 let mut out = Vec::with_capacity(k.len());
-                for k in k {
+                for &k in k.iter() {
                     out.push(self.read_slot(fr, k)?);
                 }
                 Ok(Val::A(out))
@@ -1154,7 +1367,7 @@ impl<'m> Tr<'m> {
 
     fn store(&mut self, fr: &Frame, loc: &Loc, v: Val) -> R<()> {
         match loc {
-            Loc::Fixed(s) => self.write_slot(fr, *s, v, Some(self.alive)),
+            Loc::Fixed(s) => self.write_slot(fr, *s, v, None),
             Loc::Dyn { idx, elems } => {
                 for (k, e) in elems.iter().enumerate() {
                     let kn = self.b.konst(ElemType::Lint, Value::Int(k as i128));
@@ -1162,8 +1375,7 @@ impl<'m> Tr<'m> {
                         .b
                         .op(Kind::Binary(BinOp::Eq), vec![*idx, kn], ElemType::Bool)
                         .0;
-                    let g = self.b.and(self.alive, eq);
-                    self.write_slot(fr, *e, v.clone(), Some(g))?;
+                    self.write_slot(fr, *e, v.clone(), Some(eq))?;
                 }
                 Ok(())
             }
@@ -1183,14 +1395,15 @@ impl<'m> Tr<'m> {
                 }
                 let old = self.env[c];
                 let n = self.fit(n, self.b.ty(old));
-                self.env[c] = match guard {
+                let n = match guard {
                     None => n,
                     Some(g) => self.b.switch(g, n, old),
                 };
+                self.set_cell(c, n);
                 Ok(())
             }
             (Slot::Agg(k), Val::A(vs)) if k.len() == vs.len() => {
-                for (k, v) in k.into_iter().zip(vs) {
+                for (k, v) in k.iter().copied().zip(vs) {
                     self.write_slot(fr, k, v, guard)?;
                 }
                 Ok(())

@@ -8,12 +8,13 @@
 //! driven by an earlier component (the reader does not rely on it: it sorts
 //! the components itself). An `<I>` names its library component
 //! (`Name="AF_ADD"`), has a unique `ID`, its parameters as `<A Key Value>`
-//! and its pins as `<PIN Name Net>` with `PINDIR` (I or O) and `PINTYPE`.
+//! and its pins as `<PIN Name Net>` with `PINDIR` (I or O), and for an
+//! output pin the `PINTYPE` of the net it drives.
 //! Nets are named `N1`, `N2`... in the order of their drivers. The same
 //! circuit always gives the same bytes.
 
-use quick_xml::events::{BytesDecl, BytesEnd, BytesStart, Event};
-use quick_xml::{Reader, Writer};
+use quick_xml::events::{BytesStart, Event};
+use quick_xml::Reader;
 use rustc_hash::FxHashMap;
 use stc_ir::FaultKind;
 use stc_values::{ElemType, Value};
@@ -27,8 +28,19 @@ pub const VERSION: &str = "1.0";
 /// The parameters (`<A>`) of a component, in the order they are written.
 fn params(k: &Kind) -> Vec<(&'static str, String)> {
     match k {
-        Kind::Input { name, init } | Kind::Register { name, init } => {
-            vec![("V1", name.clone()), ("INIT", value_text(init))]
+        Kind::Input {
+            name,
+            init,
+            aliases,
+        }
+        | Kind::Register {
+            name,
+            init,
+            aliases,
+        } => {
+            let mut v = vec![("V1", name.clone()), ("INIT", value_text(init))];
+            v.extend(aliases.iter().map(|a| ("ALIAS", a.clone())));
+            v
         }
         Kind::Const(v) => vec![("V1", value_text(v))],
         Kind::Output { name } => vec![("V1", name.clone())],
@@ -56,60 +68,53 @@ fn params(k: &Kind) -> Vec<(&'static str, String)> {
     }
 }
 
-fn net_name(n: NetId) -> String {
-    format!("N{}", n.0 + 1)
-}
-
 /// The document of a circuit.
+///
+/// Written as text directly (with `quick_xml`'s escaping of attribute
+/// values): the document of a large program has millions of elements, and
+/// an event writer's allocation per attribute tripled the time of the whole
+/// command. [`read`] parses it with `quick_xml`'s reader.
 pub fn write(c: &Circuit) -> String {
-    let mut w = Writer::new_with_indent(Vec::new(), b' ', 1);
-    // (Writing into a Vec cannot fail.)
-    let _ = w.write_event(Event::Decl(BytesDecl::new("1.0", Some("UTF-8"), None)));
-    let root = BytesStart::new("NOB_FLAT").with_attributes([
-        ("FileName", c.name.as_str()),
-        ("Version", VERSION),
-        ("Generator", "stc"),
-    ]);
-    let _ = w.write_event(Event::Start(root));
-    let _ = w.write_event(Event::Empty(BytesStart::new("LIBRARY")));
-    let _ = w.write_event(Event::Start(BytesStart::new("DESIGN")));
-    let _ = w.write_event(Event::Empty(BytesStart::new("BUSSTRUCTURE")));
+    use std::fmt::Write as _;
+    let mut out = String::with_capacity(64 + c.components.len() * 320);
+    let esc = |s: &str| quick_xml::escape::escape(s).into_owned();
+    // (Writing into a String cannot fail.)
+    let _ = write!(
+        out,
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<NOB_FLAT FileName=\"{}\" Version=\"{VERSION}\" Generator=\"stc\">\n <LIBRARY/>\n <DESIGN>\n  <BUSSTRUCTURE/>\n",
+        esc(&c.name)
+    );
     for (i, comp) in c.components.iter().enumerate() {
-        let id = format!("U{}", i + 1);
-        let inst = BytesStart::new("I")
-            .with_attributes([("Name", lib::name_of(&comp.kind)), ("ID", id.as_str())]);
-        let _ = w.write_event(Event::Start(inst));
+        let _ = writeln!(
+            out,
+            "  <I Name=\"{}\" ID=\"U{}\">",
+            lib::name_of(&comp.kind),
+            i + 1
+        );
         for (k, v) in params(&comp.kind) {
-            let a = BytesStart::new("A").with_attributes([("Key", k), ("Value", v.as_str())]);
-            let _ = w.write_event(Event::Empty(a));
+            let _ = writeln!(out, "   <A Key=\"{k}\" Value=\"{}\"/>", esc(&v));
         }
-        let ins = comp
-            .inputs
-            .iter()
-            .enumerate()
-            .map(|(j, n)| (format!("A{}", j + 1), *n, "I"));
-        let outs = comp.outputs.iter().enumerate().map(|(j, n)| {
-            let pin = if j == 0 { "X1" } else { "F1" };
-            (pin.to_string(), *n, "O")
-        });
-        for (pin, net, dir) in ins.chain(outs) {
-            let net_text = net_name(net);
-            let p = BytesStart::new("PIN")
-                .with_attributes([("Name", pin.as_str()), ("Net", net_text.as_str())]);
-            let _ = w.write_event(Event::Start(p));
-            let a = BytesStart::new("A").with_attributes([("Key", "PINDIR"), ("Value", dir)]);
-            let _ = w.write_event(Event::Empty(a));
-            let ty = c.nets.get(net.index()).map(|t| pin_type(*t)).unwrap_or("?");
-            let a = BytesStart::new("A").with_attributes([("Key", "PINTYPE"), ("Value", ty)]);
-            let _ = w.write_event(Event::Empty(a));
-            let _ = w.write_event(Event::End(BytesEnd::new("PIN")));
+        for (j, n) in comp.inputs.iter().enumerate() {
+            let _ = write!(
+                out,
+                "   <PIN Name=\"A{}\" Net=\"N{}\">\n    <A Key=\"PINDIR\" Value=\"I\"/>\n   </PIN>\n",
+                j + 1,
+                n.0 + 1
+            );
         }
-        let _ = w.write_event(Event::End(BytesEnd::new("I")));
+        for (j, n) in comp.outputs.iter().enumerate() {
+            // A net's type is on its driver's pin (as in the seed).
+            let ty = c.nets.get(n.index()).map(|t| pin_type(*t)).unwrap_or("?");
+            let _ = write!(
+                out,
+                "   <PIN Name=\"{}\" Net=\"N{}\">\n    <A Key=\"PINDIR\" Value=\"O\"/>\n    <A Key=\"PINTYPE\" Value=\"{ty}\"/>\n   </PIN>\n",
+                if j == 0 { "X1" } else { "F1" },
+                n.0 + 1
+            );
+        }
+        out.push_str("  </I>\n");
     }
-    let _ = w.write_event(Event::End(BytesEnd::new("DESIGN")));
-    let _ = w.write_event(Event::End(BytesEnd::new("NOB_FLAT")));
-    let mut out = String::from_utf8_lossy(&w.into_inner()).into_owned();
-    out.push('\n');
+    out.push_str(" </DESIGN>\n</NOB_FLAT>\n");
     out
 }
 
@@ -382,15 +387,24 @@ fn kind_of(
             .parse::<i128>()
             .map_err(|_| structure(format!("{}: {k} is not an integer", inst.id)))
     };
+    let aliases = || {
+        inst.params
+            .iter()
+            .filter(|(k, _)| k == "ALIAS")
+            .map(|(_, v)| v.clone())
+            .collect::<Vec<_>>()
+    };
     let name = inst.name.as_str();
     Ok(match name {
         lib::INPUT => Kind::Input {
             name: need("V1")?.to_string(),
             init: value("INIT")?,
+            aliases: aliases(),
         },
         lib::REGISTER => Kind::Register {
             name: need("V1")?.to_string(),
             init: value("INIT")?,
+            aliases: aliases(),
         },
         lib::CLOCK => Kind::Clock,
         lib::CONST => Kind::Const(value("V1")?),

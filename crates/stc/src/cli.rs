@@ -329,7 +329,13 @@ fn run(cli: Cli) -> Outcome {
                         Err(e) => return usage_error(e),
                     };
                     match stc_netlist::translate(&module, p) {
-                        Ok(circuit) => stc_netlist::xml::write(&circuit).into_bytes(),
+                        Ok(circuit) => {
+                            let doc = stc_netlist::xml::write(&circuit).into_bytes();
+                            // The process ends right after: freeing the
+                            // circuit piece by piece would only cost time.
+                            std::mem::forget(circuit);
+                            doc
+                        }
                         Err(r) => {
                             let d = r.to_diagnostic(&sources);
                             o.stderr.push_str(&driver::render(&[d], &sources, &opts));
@@ -344,6 +350,10 @@ fn run(cli: Cli) -> Outcome {
                     )
                 }
             };
+            if emit == Emit::Netlist {
+                // (As for `stc check`: no point freeing the tree at exit.)
+                std::mem::forget(module);
+            }
             match output {
                 Some(path) => o.file = Some((path, bytes)),
                 None => o.stdout = String::from_utf8_lossy(&bytes).into_owned(),

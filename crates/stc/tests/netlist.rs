@@ -413,6 +413,7 @@ fn run_case(case: &Path, dir: &Path) -> Result<Outcome, String> {
     let mut tick: i128 = 10_000_000;
     let mut program = None;
     let mut sets = Vec::new();
+    let mut stimulus: Option<PathBuf> = None;
     let mut it = d.options.iter();
     while let Some(o) = it.next() {
         let (k, v) = match o.split_once('=') {
@@ -436,6 +437,15 @@ fn run_case(case: &Path, dir: &Path) -> Result<Outcome, String> {
             }
             "--program" => program = Some(val()),
             "--set" => sets.push(val()),
+            "--stimulus" => {
+                let f = val();
+                let base = if case.is_dir() {
+                    case
+                } else {
+                    case.parent().unwrap_or(Path::new("."))
+                };
+                stimulus = Some(base.join(f));
+            }
             "--max-steps" => {
                 val();
             }
@@ -499,6 +509,45 @@ fn run_case(case: &Path, dir: &Path) -> Result<Outcome, String> {
         sim.set(path, v);
     }
     let _ = prefix;
+    // `cycle,PATH,...` rows: values set just before their cycle.
+    let mut rows: Vec<(u64, Vec<(String, Value)>)> = Vec::new();
+    if let Some(f) = &stimulus {
+        let text = std::fs::read_to_string(f).map_err(|e| format!("{}: {e}", f.display()))?;
+        let mut lines = text.lines();
+        let header: Vec<String> = lines
+            .next()
+            .unwrap_or("")
+            .split(',')
+            .map(|h| h.trim().to_string())
+            .collect();
+        for line in lines.filter(|l| !l.trim().is_empty()) {
+            let cells: Vec<&str> = line.split(',').map(str::trim).collect();
+            let k: u64 = cells
+                .first()
+                .and_then(|c| c.parse().ok())
+                .ok_or("bad stimulus cycle")?;
+            let mut vals = Vec::new();
+            for (path, text) in header.iter().zip(&cells).skip(1) {
+                if text.is_empty() {
+                    continue;
+                }
+                let Some(t) = sim.type_of(path) else {
+                    return Ok(Outcome::Skipped(format!(
+                        "stimulus {path}: not an input or register"
+                    )));
+                };
+                let v = match stc_values::parse_value(t, text) {
+                    Ok(v) => v,
+                    Err(_) => match enum_value(m, text) {
+                        Some(i) => Value::Int(i),
+                        None => return Ok(Outcome::Skipped(format!("stimulus value {text}"))),
+                    },
+                };
+                vals.push((path.clone(), v));
+            }
+            rows.push((k, vals));
+        }
+    }
     let check = |sim: &Simulator, k: Option<u64>| -> Result<(), String> {
         for e in d.expects.iter().filter(|e| e.cycle == k) {
             compare_value(sim, m, &names, &e.path, &e.value)
@@ -508,6 +557,11 @@ fn run_case(case: &Path, dir: &Path) -> Result<Outcome, String> {
     };
     for k in 1..=cycles {
         let now = (k as i128 - 1) * tick;
+        for (_, vals) in rows.iter().filter(|(r, _)| *r == k) {
+            for (p, v) in vals {
+                sim.set(p, v.clone());
+            }
+        }
         match sim.step(&[], now) {
             Ok(_) => check(&sim, Some(k))?,
             Err(StepError::Fault(f)) => {

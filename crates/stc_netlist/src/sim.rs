@@ -225,3 +225,73 @@ impl Simulator {
         Ok(outputs)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::build::Builder;
+    use stc_values::BinOp;
+
+    /// A counter: a register fed by itself plus the input, and a division
+    /// by the input whose fault module is always enabled.
+    fn counter() -> Circuit {
+        let mut b = Builder::new("C".into());
+        let step = b.add(
+            Kind::Input {
+                name: "C.step".into(),
+                init: Value::Int(1),
+                aliases: vec![],
+            },
+            vec![],
+            Some(ElemType::Dint),
+        );
+        let q = b.add(
+            Kind::Register {
+                name: "C.n".into(),
+                init: Value::Int(0),
+                aliases: vec![],
+            },
+            vec![],
+            Some(ElemType::Dint),
+        );
+        let reg = b.components() - 1;
+        let (d, _) = b.op(Kind::Binary(BinOp::Add), vec![q, step], ElemType::Dint);
+        b.c.components[reg].inputs = vec![d];
+        let (_, f) = b.op(Kind::Binary(BinOp::Div), vec![q, step], ElemType::Dint);
+        let on = b.bool(true);
+        b.add(
+            Kind::Fault {
+                instance: "C".into(),
+                pou: "C".into(),
+                file: "c.st".into(),
+                line: 3,
+                col: 1,
+            },
+            vec![f.unwrap(), on],
+            None,
+        );
+        b.add(Kind::Output { name: "C.n".into() }, vec![d], None);
+        b.finish()
+    }
+
+    #[test]
+    fn registers_carry_state_and_a_fault_keeps_the_last_cycle() {
+        let mut sim = Simulator::new(counter());
+        assert_eq!(
+            sim.step(&[], 0).unwrap(),
+            vec![("C.n".to_string(), Value::Int(1))]
+        );
+        assert_eq!(
+            sim.step(&[("c.STEP", Value::Int(5))], 0).unwrap()[0].1,
+            Value::Int(6)
+        );
+        assert_eq!(sim.get("C.n"), Some(&Value::Int(6)));
+        let err = sim.step(&[("C.step", Value::Int(0))], 0).unwrap_err();
+        let StepError::Fault(f) = err else {
+            panic!("{err:?}")
+        };
+        assert_eq!((f.kind, f.line), (FaultKind::DivisionByZero, 3));
+        assert_eq!(sim.get("C.n"), Some(&Value::Int(6)));
+        assert_eq!(sim.cycles(), 2);
+    }
+}

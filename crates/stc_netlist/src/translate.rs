@@ -213,6 +213,9 @@ struct Tr<'m> {
     alive: NetId,
     /// Every change of a cell's value: the cell and its value before.
     journal: Vec<(usize, NetId)>,
+    /// Per cell, the last mark it got (sets of cells without hashing).
+    mark: Vec<u32>,
+    generation: u32,
     fals: NetId,
     globals: FxHashMap<usize, SlotId>,
     directs: FxHashMap<String, SlotId>,
@@ -237,6 +240,8 @@ impl<'m> Tr<'m> {
             slots: Vec::new(),
             alive: tru,
             journal: Vec::new(),
+            mark: Vec::new(),
+            generation: 0,
             fals,
             globals: FxHashMap::default(),
             directs: FxHashMap::default(),
@@ -835,10 +840,10 @@ impl<'m> Tr<'m> {
         }
         let at = self.alive;
         // The THEN values, and the cells back to their values before.
-        let (order, entry) = self.changed_since(start);
-        let then_vals: Vec<NetId> = order.iter().map(|c| self.env[*c]).collect();
-        for &cell in &order {
-            self.set_cell(cell, entry[&cell]);
+        let then_changed = self.changed_since(start);
+        let then_vals: Vec<NetId> = then_changed.iter().map(|(c, _)| self.env[*c]).collect();
+        for &(cell, old) in &then_changed {
+            self.set_cell(cell, old);
         }
         let mid = self.journal.len();
         let nc = self.b.not(c);
@@ -848,11 +853,19 @@ impl<'m> Tr<'m> {
             els(self, fr)?;
         }
         let ae = self.alive;
-        let (else_order, else_entry) = self.changed_since(mid);
-        let mut cells: Vec<(usize, NetId)> = order.into_iter().zip(then_vals).collect();
-        for cell in else_order {
-            if !entry.contains_key(&cell) {
-                cells.push((cell, else_entry[&cell]));
+        let else_changed = self.changed_since(mid);
+        let g = self.next_mark();
+        for &(cell, _) in &then_changed {
+            self.mark[cell] = g;
+        }
+        let mut cells: Vec<(usize, NetId)> = then_changed
+            .iter()
+            .map(|(c, _)| *c)
+            .zip(then_vals)
+            .collect();
+        for (cell, old) in else_changed {
+            if self.mark[cell] != g {
+                cells.push((cell, old));
             }
         }
         for (cell, vt) in cells {
@@ -878,16 +891,23 @@ impl<'m> Tr<'m> {
 
     /// The cells changed since journal position `start`, in order, with
     /// their values then.
-    fn changed_since(&self, start: usize) -> (Vec<usize>, FxHashMap<usize, NetId>) {
-        let mut entry: FxHashMap<usize, NetId> = FxHashMap::default();
-        let mut order = Vec::new();
+    fn changed_since(&mut self, start: usize) -> Vec<(usize, NetId)> {
+        let g = self.next_mark();
+        let mut out = Vec::new();
         for &(c, old) in &self.journal[start..] {
-            if let std::collections::hash_map::Entry::Vacant(e) = entry.entry(c) {
-                e.insert(old);
-                order.push(c);
+            if self.mark[c] != g {
+                self.mark[c] = g;
+                out.push((c, old));
             }
         }
-        (order, entry)
+        out
+    }
+
+    /// A fresh mark for [`Self::mark`] (every cell has an older one).
+    fn next_mark(&mut self) -> u32 {
+        self.mark.resize(self.cells.len(), 0);
+        self.generation += 1;
+        self.generation
     }
 
     /// CASE: the first arm whose ranges hold the selector, as a chain of

@@ -490,3 +490,71 @@ fn topo(comps: &[Component], driver: &[usize], insts: &[RawInst]) -> Result<Vec<
     }
     Ok(order)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn doc(body: &str) -> String {
+        format!(
+            "<?xml version=\"1.0\"?><NOB_FLAT FileName=\"T\" Version=\"1.0\"><LIBRARY/><DESIGN>{body}</DESIGN></NOB_FLAT>"
+        )
+    }
+
+    fn pin(name: &str, net: &str, dir: &str, ty: Option<&str>) -> String {
+        let t = ty
+            .map(|t| format!("<A Key=\"PINTYPE\" Value=\"{t}\"/>"))
+            .unwrap_or_default();
+        format!("<PIN Name=\"{name}\" Net=\"{net}\"><A Key=\"PINDIR\" Value=\"{dir}\"/>{t}</PIN>")
+    }
+
+    #[test]
+    fn a_written_circuit_reads_back_the_same() {
+        let mut b = crate::build::Builder::new("M".into());
+        let x = b.add(
+            Kind::Input {
+                name: "M.x".into(),
+                init: Value::Int(3),
+                aliases: vec![],
+            },
+            vec![],
+            Some(ElemType::Int),
+        );
+        let one = b.konst(ElemType::Int, Value::Int(1));
+        let (s, _) = b.op(
+            Kind::Binary(stc_values::BinOp::Add),
+            vec![x, one],
+            ElemType::Int,
+        );
+        b.add(Kind::Output { name: "M.y".into() }, vec![s], None);
+        let c = b.finish();
+        let text = write(&c);
+        let back = read(&text).unwrap();
+        assert_eq!(back, c);
+        assert_eq!(write(&back), text);
+    }
+
+    #[test]
+    fn combinational_loops_and_unknown_components_are_rejected() {
+        let looped = doc(&format!(
+            "<I Name=\"LG_NOT\" ID=\"U1\">{}{}</I>",
+            pin("A1", "N1", "I", None),
+            pin("X1", "N1", "O", Some("BOOL"))
+        ));
+        assert!(matches!(read(&looped), Err(ReadError::Loop(_))));
+        let unknown = doc(&format!(
+            "<I Name=\"XX_MAGIC\" ID=\"U1\">{}</I>",
+            pin("X1", "N1", "O", Some("BOOL"))
+        ));
+        assert!(matches!(read(&unknown), Err(ReadError::Structure(_))));
+        let undriven = doc(&format!(
+            "<I Name=\"IC_MODULE-OUT\" ID=\"U1\"><A Key=\"V1\" Value=\"y\"/>{}</I>",
+            pin("A1", "N9", "I", None)
+        ));
+        assert!(matches!(read(&undriven), Err(ReadError::Structure(_))));
+        assert!(matches!(
+            read("<NOB_FLAT"),
+            Err(ReadError::Xml(_)) | Err(ReadError::Structure(_))
+        ));
+    }
+}

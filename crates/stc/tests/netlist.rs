@@ -10,8 +10,9 @@
 //! - the run conformance suite: every case the netlist can express is
 //!   written, validated, read back and simulated with its options, and must
 //!   give the values its `// expect:` lines give on the VM (and its fault);
-//!   the cases refused or not simulated are listed with their reason in a
-//!   snapshot.
+//!   and `stc run --backend netlist` prints the same bytes as the VM on
+//!   every case it can express; the cases refused or not simulated are
+//!   listed with their reason in snapshots.
 
 mod common;
 
@@ -619,4 +620,75 @@ fn run_cases_give_the_vm_values_on_the_simulated_circuit() {
         format!("{same} cases give the VM's values on the circuit; not simulated:"),
     );
     insta::assert_snapshot!("run_cases_not_simulated", lines.join("\n"));
+}
+
+/// `stc run` on the VM and on the netlist (`--backend netlist`, which
+/// writes the document, reads it back and simulates it): the same bytes
+/// on stdout and stderr and the same status for every run case the
+/// netlist can express, with every expected path watched and a report
+/// after every cycle.
+#[test]
+fn run_cases_print_the_same_bytes_on_the_vm_and_the_netlist() {
+    let root = common::data_dir().join("conformance/run");
+    let mut same = 0;
+    let mut other = Vec::new();
+    let mut failures = Vec::new();
+    for case in common::cases(&root) {
+        let rel = case
+            .strip_prefix(&root)
+            .unwrap_or(&case)
+            .display()
+            .to_string();
+        let d = directives(&case);
+        let opts = common::run_options(&case)
+            .ok()
+            .flatten()
+            .unwrap_or_default();
+        let mut args: Vec<String> = vec!["stc".into(), "run".into()];
+        args.extend(
+            common::case_files(&case)
+                .iter()
+                .map(|f| f.display().to_string()),
+        );
+        args.extend(opts);
+        args.extend(["--format".into(), "json".into(), "--trace".into()]);
+        let mut paths: Vec<String> = d.expects.iter().map(|e| e.path.clone()).collect();
+        paths.dedup();
+        if !paths.is_empty() {
+            args.push("--watch".into());
+            args.push(paths.join(","));
+        }
+        let run = |backend: &str| {
+            let mut a = args.clone();
+            a.extend(["--backend".to_string(), backend.to_string()]);
+            let refs: Vec<&str> = a.iter().map(|s| s.as_str()).collect();
+            stc::cli::run_args(&refs)
+        };
+        let vm = run("vm");
+        let nl = run("netlist");
+        if nl.status == 1 && nl.stderr.contains("error[E10") {
+            other.push(format!("{rel}: refused"));
+            continue;
+        }
+        if nl.status == 2 && vm.status != 2 {
+            other.push(format!("{rel}: {}", nl.stderr.trim()));
+            continue;
+        }
+        if (vm.status, &vm.stdout, &vm.stderr) == (nl.status, &nl.stdout, &nl.stderr) {
+            same += 1;
+        } else {
+            failures.push(format!(
+                "{rel}: vm status {} / netlist {}\n--- vm\n{}{}\n--- netlist\n{}{}",
+                vm.status, nl.status, vm.stdout, vm.stderr, nl.stdout, nl.stderr
+            ));
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} cases differ:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+    other.insert(0, format!("{same} cases print the same bytes; the others:"));
+    insta::assert_snapshot!("run_cases_vm_and_netlist", other.join("\n"));
 }

@@ -370,7 +370,7 @@ program VAR_IN_OUT, a POU other than a PROGRAM as the circuit. The message
 says which; docs/netlist.md lists what a circuit expresses.";
     E1006 Error "circuit too large"
 "Unrolling the loops and inlining the calls of the program would make a
-circuit of more than 4 000 000 components. Make the loops shorter or the
+circuit of more than 1 000 000 components. Make the loops shorter or the
 program smaller.";
 
     W0101 Warning "result depends on evaluation order"

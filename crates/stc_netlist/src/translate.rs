@@ -57,7 +57,7 @@ pub mod limits {
     /// Elements of an array that one run-time index may select among.
     pub const INDEXED_ELEMENTS: usize = 1024;
     /// Components of a whole circuit.
-    pub const COMPONENTS: usize = 4_000_000;
+    pub const COMPONENTS: usize = 1_000_000;
 }
 
 /// Why a program cannot become a circuit: a diagnostic whose position is

@@ -431,9 +431,33 @@ fn emit_ast(parsed: &stc_pipeline::Parsed) -> String {
 fn explain(code: &str) -> Outcome {
     match Code::parse(code) {
         Some(c) => Outcome {
-            stdout: format!("{c}: {}\n\n{}\n", c.title(), c.explanation()),
+            stdout: explanation(c),
             ..Outcome::default()
         },
         None => usage_error(format!("unknown diagnostic code `{code}`")),
+    }
+}
+
+/// What `stc explain` prints: the title, the explanation, then the example
+/// (the wrong source and the right one, indented), if the code has one.
+pub fn explanation(c: Code) -> String {
+    let mut out = format!("{c}: {}\n\n{}\n", c.title(), c.explanation());
+    if let Some(ex) = stc_diagnostics::example(c) {
+        out.push_str("\nFor example, this is wrong:\n\n");
+        indent(&mut out, ex.wrong);
+        out.push_str("\nand this is right:\n\n");
+        indent(&mut out, ex.right);
+    }
+    out
+}
+
+/// Appends `text` indented by four spaces (blank lines stay empty).
+fn indent(out: &mut String, text: &str) {
+    for line in text.lines() {
+        if !line.is_empty() {
+            out.push_str("    ");
+            out.push_str(line);
+        }
+        out.push('\n');
     }
 }

@@ -27,8 +27,82 @@ pub fn failed(diags: &[Diagnostic], opts: &Options) -> bool {
         .any(|d| d.is_error() || opts.warnings_as_errors)
 }
 
-/// The diagnostics as text, in source order, in the requested format.
+/// At most this many errors are printed per file in the human format (a
+/// file that is not ST at all, say a VMASM listing given to `stc run`,
+/// would otherwise print one per line); the others are counted.
+pub const MAX_ERRORS_PER_FILE: usize = 50;
+
+/// The diagnostics as the command prints them: in source order, in the
+/// requested format; the human format shows at most
+/// [`MAX_ERRORS_PER_FILE`] errors of each file (saying how many more there
+/// are) and ends with the summary line (`2 errors, 1 warning`).
 pub fn render(diags: &[Diagnostic], sources: &SourceMap, opts: &Options) -> String {
+    if opts.format != MessageFormat::Human || diags.is_empty() {
+        return render_each(diags, sources, opts);
+    }
+    let severe = |d: &Diagnostic| d.is_error() || opts.warnings_as_errors;
+    let file_of = |d: &Diagnostic| {
+        sources
+            .file_of(d.span.lo)
+            .map(|f| sources.file(f).name.clone())
+    };
+    let mut shown: Vec<Diagnostic> = Vec::new();
+    let mut hidden: Vec<(Option<String>, usize)> = Vec::new();
+    let mut per_file: std::collections::HashMap<Option<String>, usize> = Default::default();
+    let mut sorted: Vec<&Diagnostic> = diags.iter().collect();
+    sorted.sort_by_key(|d| d.span.lo);
+    for d in sorted {
+        if severe(d) {
+            let f = file_of(d);
+            let n = per_file.entry(f.clone()).or_default();
+            *n += 1;
+            if *n > MAX_ERRORS_PER_FILE {
+                match hidden.iter_mut().find(|(g, _)| *g == f) {
+                    Some((_, k)) => *k += 1,
+                    None => hidden.push((f, 1)),
+                }
+                continue;
+            }
+        }
+        shown.push(d.clone());
+    }
+    let mut out = render_each(&shown, sources, opts);
+    for (f, k) in &hidden {
+        let what = if *k == 1 { "error" } else { "errors" };
+        match f {
+            Some(f) => out.push_str(&format!("... and {k} more {what} in {f} not shown\n")),
+            None => out.push_str(&format!("... and {k} more {what} not shown\n")),
+        }
+    }
+    out.push_str(&summary(diags, opts));
+    out.push('\n');
+    out
+}
+
+/// The summary line of the human format: `2 errors, 1 warning`.
+pub fn summary(diags: &[Diagnostic], opts: &Options) -> String {
+    let errors = diags
+        .iter()
+        .filter(|d| d.is_error() || opts.warnings_as_errors)
+        .count();
+    let warnings = diags.len() - errors;
+    let count = |n: usize, one: &str| {
+        if n == 1 {
+            format!("1 {one}")
+        } else {
+            format!("{n} {one}s")
+        }
+    };
+    match (errors, warnings) {
+        (0, w) => count(w, "warning"),
+        (e, 0) => count(e, "error"),
+        (e, w) => format!("{}, {}", count(e, "error"), count(w, "warning")),
+    }
+}
+
+/// Each diagnostic as text, in source order, in the requested format (no
+/// summary and no cap: the snapshot tests show every diagnostic).
+pub fn render_each(diags: &[Diagnostic], sources: &SourceMap, opts: &Options) -> String {
     let mut sorted: Vec<&Diagnostic> = diags.iter().collect();
     sorted.sort_by_key(|d| d.span.lo);
     let mut out = String::new();

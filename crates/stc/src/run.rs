@@ -1,4 +1,4 @@
-//! `stc run` (spec/cli.md): compile the sources (or load one `.stbc`
+//! `stc run` (spec/cli.md): compile the sources (or load one `.stbc` or `.vmasm`
 //! file), set the runtime up from the options, run in simulated time or in
 //! real time, and print the reports.
 //!
@@ -16,7 +16,7 @@ use stc_engine_c::{CEngine, Toolchain};
 use stc_runtime::path::split_list;
 use stc_runtime::realtime::{RealTime, WallClock};
 use stc_runtime::Engine;
-use stc_runtime::{Format, Report, Simulation, Stimulus, Unpaced, DEFAULT_MAX_STEPS};
+use stc_runtime::{Format, Renderer, Report, Simulation, Stimulus, Unpaced, DEFAULT_MAX_STEPS};
 use stc_vm::Machine;
 
 use crate::cli::{Outcome, EXIT_ERRORS, EXIT_OK, EXIT_USAGE};
@@ -86,6 +86,7 @@ pub enum Backend {
 pub enum ReportFormat {
     Text,
     Json,
+    Csv,
 }
 
 fn usage_error(msg: impl std::fmt::Display) -> Outcome {
@@ -123,25 +124,38 @@ fn load(
     backend: Backend,
     program: Option<&str>,
 ) -> Result<(Box<dyn Engine>, String), Outcome> {
-    let is_stbc = |p: &Path| {
-        p.extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("stbc"))
+    // Bytecode: a `.stbc` file, or its VMASM text (`--emit vmasm`), which
+    // is assembled and verified like a loaded file.
+    let bytecode_kind = |p: &Path| {
+        p.extension().and_then(|e| {
+            let e = e.to_ascii_lowercase();
+            (e == "stbc" || e == "vmasm").then_some(e)
+        })
     };
-    if files.iter().any(|p| is_stbc(p)) {
+    if let Some(kind) = files.iter().find_map(|p| bytecode_kind(p)) {
         let [file] = files else {
-            return Err(usage_error(
-                "a .stbc file is run alone, without other files",
-            ));
+            return Err(usage_error(format!(
+                "a .{} file is run alone, without other files",
+                kind.to_string_lossy()
+            )));
         };
         let bytes = std::fs::read(file)
             .map_err(|e| usage_error(format!("cannot read {}: {e}", file.display())))?;
         if backend != Backend::Vm {
-            return Err(usage_error(
-                "a .stbc file is bytecode: it runs on the VM (--backend vm)",
-            ));
+            return Err(usage_error(format!(
+                "a .{} file is bytecode: it runs on the VM (--backend vm)",
+                kind.to_string_lossy()
+            )));
         }
-        let image = stc_vm::format::decode(&bytes)
-            .map_err(|e| usage_error(format!("cannot load {}: {e}", file.display())))?;
+        let image = if kind == "vmasm" {
+            let text = String::from_utf8(bytes).map_err(|_| {
+                usage_error(format!("cannot load {}: not UTF-8 text", file.display()))
+            })?;
+            stc_vm::asm::assemble(&text)
+        } else {
+            stc_vm::format::decode(&bytes)
+        }
+        .map_err(|e| usage_error(format!("cannot load {}: {e}", file.display())))?;
         return Ok((Box::new(Machine::new(Arc::new(image))), String::new()));
     }
     let (sm, diags) = sources::load(files).map_err(usage_error)?;
@@ -194,14 +208,11 @@ fn load(
                 status: EXIT_ERRORS,
                 ..Outcome::default()
             }),
-            Err(stc_engine_netlist::Error::Model(e)) => {
-                let (text, status) = crate::cli::vm_compile_error(&e, &sources, opts);
-                Err(Outcome {
-                    stderr: format!("{rendered}{text}"),
-                    status,
-                    ..Outcome::default()
-                })
-            }
+            Err(e @ stc_engine_netlist::Error::Model(_)) => Err(Outcome {
+                stderr: format!("{rendered}internal error: {e}\n"),
+                status: crate::cli::EXIT_INTERNAL,
+                ..Outcome::default()
+            }),
             Err(e @ stc_engine_netlist::Error::Read(_)) => Err(Outcome {
                 stderr: format!("{rendered}error: {e}\n"),
                 status: crate::cli::EXIT_INTERNAL,
@@ -276,6 +287,19 @@ fn configure_and_run(image: Box<dyn Engine>, args: &RunArgs) -> Outcome {
         Ok(s) => s,
         Err(e) => return usage_error(e),
     };
+    let mut warnings: String = sim
+        .plan()
+        .warnings()
+        .iter()
+        .map(|w| format!("{w}\n"))
+        .collect();
+    if args.realtime && !warnings.is_empty() {
+        // Reports stream from the first cycle on: the warnings go first.
+        if let Some(mut e) = console::stderr() {
+            let _ = e.write_all(warnings.as_bytes());
+            warnings.clear();
+        }
+    }
     let cycles = match (args.cycles, args.realtime) {
         (Some(n), _) => Some(n),
         (None, false) => Some(1),
@@ -293,15 +317,19 @@ fn configure_and_run(image: Box<dyn Engine>, args: &RunArgs) -> Outcome {
     let format = match args.format {
         ReportFormat::Text => Format::Text,
         ReportFormat::Json => Format::Json,
+        ReportFormat::Csv => Format::Csv,
     };
     if args.realtime {
-        realtime(&mut sim, cycles, args.trace, format)
+        let mut o = realtime(&mut sim, cycles, args.trace, format);
+        o.stderr.insert_str(0, &warnings);
+        o
     } else {
         let mut stdout = String::new();
+        let mut renderer = Renderer::new(format);
         let result = stc_runtime::run(&mut sim, cycles, args.trace, &mut Unpaced, &mut |r| {
-            stdout.push_str(&r.render(format))
+            stdout.push_str(&renderer.render(r))
         });
-        finish(stdout, String::new(), result)
+        finish(stdout, warnings, result)
     }
 }
 
@@ -338,12 +366,13 @@ fn realtime(sim: &mut Simulation, cycles: Option<u64>, trace: bool, format: Form
         }
     };
     let mut pacer = RealTime::new(WallClock::new(), sim.plan().tick_ns, stop, &mut warn);
+    let mut renderer = Renderer::new(format);
     let mut emit = |r: &Report| match &mut out_stream {
         Some(f) => {
-            let _ = f.write_all(r.render(format).as_bytes());
+            let _ = f.write_all(renderer.render(r).as_bytes());
             let _ = f.flush();
         }
-        None => stdout.push_str(&r.render(format)),
+        None => stdout.push_str(&renderer.render(r)),
     };
     let result = stc_runtime::run(sim, cycles, trace, &mut pacer, &mut emit);
     finish(stdout, stderr, result)

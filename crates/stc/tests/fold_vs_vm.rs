@@ -275,12 +275,12 @@ fn run(src: String) -> Outcome {
     }
     let module = stc_pipeline::lower(a);
     let image = Arc::new(stc_vm::compile(&module).expect("the program compiles"));
-    let inst = image.programs[0].clone();
+    let inst = image.model.programs[0].clone();
     let mut m = stc_vm::Machine::new(image.clone());
     if let Err(f) = m.run_program(&inst, 0, 1_000_000) {
         return Outcome::Fault(format!("{:?}", f.kind));
     }
-    let pou = &image.pous[inst.pou as usize];
+    let pou = &image.model.pous[inst.pou as usize];
     let r = pou
         .vars
         .iter()

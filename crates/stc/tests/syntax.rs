@@ -76,7 +76,7 @@ fn error_files_give_exactly_their_annotated_diagnostics() {
     common::run_all(&dir, |case| {
         let parsed = parse(case);
         common::compare(&parsed.diagnostics, &parsed.sources)?;
-        let rendered = driver::render(
+        let rendered = driver::render_each(
             &parsed.diagnostics,
             &parsed.sources,
             &driver::Options::default(),
@@ -105,7 +105,7 @@ fn corpus_of_every_source_file_parses() {
                 let p = e.path();
                 if p.is_dir() {
                     stack.push(p);
-                } else if p.extension().is_some_and(|x| x == "st") {
+                } else if p.extension().is_some_and(|x| x == "st" || x == "il") {
                     files.push(p);
                 }
             }
@@ -119,7 +119,7 @@ fn corpus_of_every_source_file_parses() {
                 parsed.diagnostics.is_empty(),
                 "{}: {}",
                 f.display(),
-                driver::render(
+                driver::render_each(
                     &parsed.diagnostics,
                     &parsed.sources,
                     &driver::Options::default()

@@ -23,6 +23,7 @@ fn run(src: &str, prog: &str, cycles: u32, outputs: &[&str]) -> Vec<Value> {
     let image = Arc::new(stc_vm::compile(&module).expect("compiles"));
     let mut m = stc_vm::Machine::new(image.clone());
     let inst = image
+        .model
         .programs
         .iter()
         .find(|p| p.name.eq_ignore_ascii_case(prog))
@@ -33,7 +34,7 @@ fn run(src: &str, prog: &str, cycles: u32, outputs: &[&str]) -> Vec<Value> {
             panic!("{f}");
         }
     }
-    let pou = &image.pous[inst.pou as usize];
+    let pou = &image.model.pous[inst.pou as usize];
     outputs
         .iter()
         .map(|name| {

@@ -52,12 +52,12 @@ fn vm_time_of(
 ) -> Result<f64, String> {
     let (module, _) = compile(sm, diags)?;
     let image = Arc::new(stc_vm::compile(&module).map_err(|e| e.to_string())?);
-    let inst = image.programs.first().ok_or("no program")?.clone();
+    let inst = image.model.programs.first().ok_or("no program")?.clone();
     let mut best = f64::MAX;
     for _ in 0..5 {
         let mut m = stc_vm::Machine::new(image.clone());
         if let Some(name) = start {
-            let pou = &image.pous[inst.pou as usize];
+            let pou = &image.model.pous[inst.pou as usize];
             let v = pou
                 .vars
                 .iter()

@@ -37,7 +37,7 @@ enum {
     STC_E_WCHAR = 26
 };
 
-/* Kinds of type descriptors (stc_vm::image::TypeDescKind). */
+/* Kinds of type descriptors (stc_ir::model::TypeDescKind). */
 enum {
     STC_TK_SCALAR = 0,
     STC_TK_STRING = 1,
@@ -48,7 +48,7 @@ enum {
     STC_TK_SUBRANGE = 6
 };
 
-/* Kinds of variables (stc_vm::image::VarKind); STC_VK_FIELD: a member of a STRUCT. */
+/* Kinds of variables (stc_ir::model::VarKind); STC_VK_FIELD: a member of a STRUCT. */
 enum {
     STC_VK_INPUT = 0,
     STC_VK_OUTPUT = 1,
@@ -60,6 +60,13 @@ enum {
     STC_VK_RESULT = 7,
     STC_VK_HIDDEN = 8,
     STC_VK_FIELD = 9
+};
+
+/* Kinds of POUs (stc_ir::model::PouKind), in the elem of an INSTANCE type. */
+enum {
+    STC_PK_FUNCTION = 0,
+    STC_PK_FUNCTION_BLOCK = 1,
+    STC_PK_PROGRAM = 2
 };
 
 /* Fault kinds (stc_ir::FaultKind); the texts are in stc_fault_text().

@@ -4,8 +4,10 @@
  * from them; `stc run --backend c` (crates/stc_engine_c) reads them from
  * the program built as a shared library and runs it with stc's runtime.
  *
- * The tables mirror the VM image's tables (crates/stc_vm/src/image.rs), with
- * C addresses instead of VM offsets: an offset here is a byte offset from the
+ * The tables are the program model (crates/stc_ir/src/model.rs), in its
+ * numbering (a type's index here is its index in the model and in the VM's
+ * .stbc file; the first types are the instance types of every POU, in POU
+ * order), with C addresses instead of the model's data-area offsets: an offset here is a byte offset from the
  * start of the enclosing object (offsetof), and a reference variable
  * (is_ref) holds a C pointer (void *) to the real variable.
  *
@@ -47,6 +49,7 @@ typedef struct {
     uint32_t type;          /* index in stc_types */
     size_t offset;          /* offsetof in the struct or instance */
     uint8_t kind;           /* enum stc_var_kind */
+    uint8_t in_frame;       /* lives in a call's frame (no offset here) */
     uint8_t is_ref;         /* the member holds a void * to the variable */
     uint8_t constant;       /* declared CONSTANT */
     const char *location;   /* "%QX0.0" for a located variable, else NULL */
@@ -54,7 +57,8 @@ typedef struct {
 
 typedef struct {
     uint8_t kind;                   /* enum stc_type_kind */
-    uint8_t elem;                   /* enum stc_elem: SCALAR, ENUM, SUBRANGE */
+    uint8_t elem;                   /* enum stc_elem: SCALAR, ENUM, SUBRANGE;
+                                       INSTANCE: enum stc_pou_kind */
     uint8_t wide;                   /* STRING: 1 for WSTRING */
     uint32_t cap;                   /* STRING: capacity in characters */
     const char *name;               /* ENUM, STRUCT, INSTANCE */

@@ -1,15 +1,16 @@
 //! `stc_codes.h`: the numeric codes the generated C shares with the Rust
 //! side of stc, written from the Rust enumerations that define them
-//! (elementary types, type descriptor kinds, variable kinds, fault kinds),
+//! (elementary types, type descriptor kinds, variable kinds, POU kinds,
+//! fault kinds),
 //! so C and Rust cannot drift apart. Every output directory gets this
 //! text; `runtime/stc_codes.h` is a copy for the hand-written runtime's own
 //! tests, kept equal to it by a test (`STC_BLESS=1` rewrites it).
 
 use std::fmt::Write;
 
+use stc_ir::model::{PouKind, TypeDescKind, VarKind};
 use stc_ir::FaultKind;
 use stc_syntax::token::ElemType;
-use stc_vm::image::{TypeDescKind, VarKind};
 
 /// `STC_VK_FIELD`: the kind of a member of a STRUCT, which exists only in
 /// the C tables (the VM describes struct members as fields, not variables).
@@ -40,6 +41,14 @@ fn var_kind_name(k: VarKind) -> &'static str {
         VarKind::Global => "GLOBAL",
         VarKind::Result => "RESULT",
         VarKind::Hidden => "HIDDEN",
+    }
+}
+
+fn pou_kind_name(k: PouKind) -> &'static str {
+    match k {
+        PouKind::Function => "FUNCTION",
+        PouKind::FunctionBlock => "FUNCTION_BLOCK",
+        PouKind::Program => "PROGRAM",
     }
 }
 
@@ -87,7 +96,7 @@ pub fn header() -> String {
         .collect();
     enumeration(
         &mut out,
-        "Kinds of type descriptors (stc_vm::image::TypeDescKind).",
+        "Kinds of type descriptors (stc_ir::model::TypeDescKind).",
         &kinds,
     );
     let mut vars: Vec<(String, u32)> = VarKind::ALL
@@ -97,8 +106,17 @@ pub fn header() -> String {
     vars.push(("STC_VK_FIELD".into(), u32::from(VK_FIELD)));
     enumeration(
         &mut out,
-        "Kinds of variables (stc_vm::image::VarKind); STC_VK_FIELD: a member of a STRUCT.",
+        "Kinds of variables (stc_ir::model::VarKind); STC_VK_FIELD: a member of a STRUCT.",
         &vars,
+    );
+    let pous: Vec<(String, u32)> = PouKind::ALL
+        .iter()
+        .map(|&k| (format!("STC_PK_{}", pou_kind_name(k)), u32::from(k.code())))
+        .collect();
+    enumeration(
+        &mut out,
+        "Kinds of POUs (stc_ir::model::PouKind), in the elem of an INSTANCE type.",
+        &pous,
     );
     let mut faults = vec![("STC_FAULT_NONE".to_string(), 0)];
     faults.extend(

@@ -10,7 +10,7 @@
 //! their index (`h<k>_`), since their ST names carry a `$`.
 
 use stc_ir::{Module, Var};
-use stc_sema::{TypeId, TypeKind};
+use stc_sema::{GlobalId, PouId, TypeId, TypeKind, VarId};
 use stc_syntax::literal::DirectAddress;
 use stc_syntax::token::ElemType;
 use stc_values::Value;
@@ -30,7 +30,7 @@ pub fn ident(s: &str) -> String {
 }
 
 /// The C name of a variable of a POU (instance member or frame member).
-pub fn var_name(m: &Module, index: usize, v: &Var) -> String {
+pub fn var_name(m: &Module, index: VarId, v: &Var) -> String {
     if v.hidden.is_some() {
         format!("h{index}_{}", v.hidden.unwrap_or("x"))
     } else {
@@ -93,37 +93,37 @@ pub fn type_name(m: &Module, t: TypeId) -> String {
             Some(n) => format!("S{}_{}", t.0, ident(n)),
             None => format!("S{}", t.0),
         },
-        TypeKind::Fb(p) | TypeKind::Program(p) => pou_type_name(m, p.0 as usize),
+        TypeKind::Fb(p) | TypeKind::Program(p) => pou_type_name(m, *p),
         TypeKind::Error | TypeKind::Void => "uint8_t".to_string(),
     }
 }
 
 /// The instance struct of a function block or program.
-pub fn pou_type_name(m: &Module, p: usize) -> String {
+pub fn pou_type_name(m: &Module, p: PouId) -> String {
     let pou = &m.pous[p];
     format!("FB{p}_{}", ident(m.spelled(pou.name, pou.name_span)))
 }
 
 /// The frame struct of a function.
-pub fn frame_type_name(m: &Module, p: usize) -> String {
+pub fn frame_type_name(m: &Module, p: PouId) -> String {
     let pou = &m.pous[p];
     format!("F{p}_{}", ident(m.spelled(pou.name, pou.name_span)))
 }
 
 /// The body function of a POU.
-pub fn body_name(m: &Module, p: usize) -> String {
+pub fn body_name(m: &Module, p: PouId) -> String {
     let pou = &m.pous[p];
     format!("P{p}_{}", ident(m.spelled(pou.name, pou.name_span)))
 }
 
 /// The initialiser of a POU's instance.
-pub fn init_name(m: &Module, p: usize) -> String {
+pub fn init_name(m: &Module, p: PouId) -> String {
     let pou = &m.pous[p];
     format!("I{p}_{}", ident(m.spelled(pou.name, pou.name_span)))
 }
 
 /// The C variable of a global.
-pub fn global_name(m: &Module, g: usize) -> String {
+pub fn global_name(m: &Module, g: GlobalId) -> String {
     let gl = &m.globals[g];
     format!("g{g}_{}", ident(m.spelled(gl.name, gl.span)))
 }

@@ -8,10 +8,12 @@
 
 mod codes;
 mod diagnostic;
+mod examples;
 mod render;
 mod span;
 
 pub use codes::{Code, CodeSeverity};
 pub use diagnostic::{Diagnostic, Label, Severity};
+pub use examples::{example, Example};
 pub use render::{render_human, render_json};
 pub use span::{FileId, LineCol, SourceFile, SourceMap, Span};

@@ -64,11 +64,31 @@ pub fn render_human(d: &Diagnostic, sm: &SourceMap) -> String {
             }
         }
         let text = file.line_text(line);
-        let _ = writeln!(out, "{line:>width$} | {}", expand_tabs(text));
+        // A long line is shown as a window around its marks.
+        let on_line = marks[i..].iter().take_while(|m| m.line == line);
+        let (lo, hi) = on_line.fold((usize::MAX, 0), |(lo, hi), m| {
+            (
+                lo.min(display_width(text, m.start)),
+                hi.max(display_width(text, m.end)),
+            )
+        });
+        let win = window(display_width(text, text.len()), lo, hi);
+        let shown: String = expand_tabs(text)
+            .chars()
+            .skip(win.start)
+            .take(win.end - win.start)
+            .collect();
+        let (before, after) = (
+            if win.start > 0 { ELLIPSIS } else { "" },
+            if win.cut_end { ELLIPSIS } else { "" },
+        );
+        let _ = writeln!(out, "{line:>width$} | {before}{shown}{after}");
         while i < marks.len() && marks[i].line == line {
             let m = &marks[i];
-            let lead = display_width(text, m.start);
-            let len = display_width(text, m.end).saturating_sub(lead).max(1);
+            let start = display_width(text, m.start).clamp(win.start, win.end);
+            let end = display_width(text, m.end).clamp(start, win.end);
+            let lead = start - win.start + before.len();
+            let len = (end - start).max(1);
             let ch = if m.primary { "^" } else { "-" };
             let underline = format!("{}{}", " ".repeat(lead), ch.repeat(len));
             if m.message.is_empty() {
@@ -115,6 +135,39 @@ fn mark<'a>(file: &SourceFile, span: Span, primary: bool, message: &'a str) -> M
 }
 
 const TAB: &str = "    ";
+
+/// Display columns of a source line shown at most; a longer line is cut
+/// to a window around its marks, as rustc does.
+const MAX_SHOWN: usize = 160;
+/// Columns kept before the first mark of a cut line.
+const MARGIN: usize = 40;
+const ELLIPSIS: &str = "...";
+
+/// The display columns `start..end` shown of a line `full` columns wide
+/// whose marks cover `lo..hi`; `cut_end` when the line goes on after it.
+struct Window {
+    start: usize,
+    end: usize,
+    cut_end: bool,
+}
+
+fn window(full: usize, lo: usize, hi: usize) -> Window {
+    if full <= MAX_SHOWN {
+        return Window {
+            start: 0,
+            end: full,
+            cut_end: false,
+        };
+    }
+    let start = lo.min(full).saturating_sub(MARGIN);
+    let _ = hi; // marks past the window are cut with it
+    let end = (start + MAX_SHOWN).min(full);
+    Window {
+        start,
+        end,
+        cut_end: end < full,
+    }
+}
 
 fn expand_tabs(s: &str) -> String {
     s.replace('\t', TAB)
@@ -194,6 +247,26 @@ mod tests {
         .with_label("this is BOOL")
         .with_help("use BOOL_TO_INT(...) to convert explicitly");
         (sm, d)
+    }
+
+    #[test]
+    fn a_long_line_is_shown_as_a_window_around_the_mark() {
+        let mut sm = SourceMap::new();
+        let head = "x := x + 1; ".repeat(1000);
+        let text = format!("{head}bad!;{head}\n");
+        let f = sm.add("long.st", text).unwrap();
+        let base = sm.file(f).base;
+        let at = base + head.len() as u32;
+        let d = Diagnostic::new(Code::E0301, Span::new(at, at + 3), "here").with_label("this");
+        let out = render_human(&d, &sm);
+        let lines: Vec<&str> = out.lines().collect();
+        let src = lines[2];
+        let marks = lines[3];
+        assert!(src.len() < 200, "{src}");
+        assert!(src.starts_with("1 | ...") && src.ends_with("..."), "{src}");
+        let col = src.find("bad!").expect("the mark's text is shown");
+        assert_eq!(marks.find('^'), Some(col), "{out}");
+        assert!(marks.contains("^^^ this"), "{out}");
     }
 
     #[test]

@@ -34,9 +34,9 @@ use std::ffi::c_void;
 use std::path::Path;
 use std::sync::Arc;
 
+use stc_ir::model::{Model, ProgramInst};
 use stc_ir::FaultKind;
 use stc_runtime::{Engine, Memory};
-use stc_vm::image::{Image, ProgramInst};
 use stc_vm::VmFault;
 
 pub use compile::Toolchain;
@@ -75,7 +75,7 @@ struct Globals {
 
 /// A program compiled from C and loaded: see the module documentation.
 pub struct CEngine {
-    image: Arc<Image>,
+    model: Arc<Model>,
     regions: Regions,
     /// By the model address of a program instance: its body and data.
     bodies: Vec<(u32, unsafe extern "C" fn(*mut c_void), *mut c_void)>,
@@ -129,12 +129,12 @@ impl CEngine {
                 init_all: *init,
             };
             let t = tables::Tables::read(&sym)?;
-            let model = t.model()?;
+            let loaded = t.model()?;
             (globals.init_all)();
             Ok(CEngine {
-                image: Arc::new(model.image),
-                regions: model.regions,
-                bodies: model.bodies,
+                model: Arc::new(loaded.model),
+                regions: loaded.regions,
+                bodies: loaded.bodies,
                 sites: t.sites(),
                 globals,
                 _lib: lib,
@@ -177,8 +177,8 @@ impl Memory for CEngine {
 }
 
 impl Engine for CEngine {
-    fn image(&self) -> &Arc<Image> {
-        &self.image
+    fn model(&self) -> &Arc<Model> {
+        &self.model
     }
 
     fn run_program(

@@ -8,12 +8,12 @@
 
 use std::ffi::{c_char, c_void, CStr};
 
-use stc_syntax::literal::{parse_address, DirectAddress};
-use stc_syntax::token::ElemType;
-use stc_vm::image::{
-    ConfigDesc, FieldDesc, GlobalDesc, Image, IoSlot, PouCode, PouKind, ProgramInst, ResourceDesc,
+use stc_ir::model::{
+    ConfigDesc, FieldDesc, GlobalDesc, IoSlot, Model, PouDesc, PouKind, ProgramInst, ResourceDesc,
     Source, TaskDesc, TypeDesc, TypeDescKind as K, TypeRef, VarDesc, VarKind,
 };
+use stc_syntax::literal::{parse_address, DirectAddress};
+use stc_syntax::token::ElemType;
 
 use crate::memory::{RegionBuilder, Regions};
 use crate::Error;
@@ -36,6 +36,7 @@ struct CMember {
     ty: u32,
     offset: usize,
     kind: u8,
+    in_frame: u8,
     is_ref: u8,
     constant: u8,
     location: *const c_char,
@@ -144,8 +145,8 @@ pub(crate) struct Tables {
 }
 
 /// The model of a loaded program.
-pub(crate) struct Model {
-    pub image: Image,
+pub(crate) struct Loaded {
+    pub model: Model,
     pub regions: Regions,
     pub bodies: Vec<(u32, Body, *mut c_void)>,
 }
@@ -215,7 +216,7 @@ impl Tables {
     ///
     /// # Safety
     /// The tables are the library's, as [`Tables::read`] found them.
-    pub(crate) unsafe fn model(&self) -> Result<Model, Error> {
+    pub(crate) unsafe fn model(&self) -> Result<Loaded, Error> {
         let bad =
             |what: &str| Error::Build(format!("the library's tables are inconsistent: {what}"));
 
@@ -254,8 +255,8 @@ impl Tables {
                 .ok_or_else(|| bad("an object outside every region"))
         };
 
-        // Types; an INSTANCE type is a POU.
-        let program_types: Vec<u32> = all_programs.iter().map(|p| p.ty).collect();
+        // Types; an INSTANCE type is a POU (its kind in `elem`), in the
+        // model's order of POUs.
         let mut types = Vec::with_capacity(self.types.len());
         let mut pous = Vec::new();
         for (i, t) in self.types.iter().enumerate() {
@@ -303,18 +304,11 @@ impl Tables {
                         .map(|m| var(m).ok_or_else(|| bad("a variable of an unknown kind")))
                         .collect::<Result<Vec<_>, Error>>()?;
                     let pou = pous.len() as u32;
-                    pous.push(PouCode {
+                    pous.push(PouDesc {
                         name: text(t.name).unwrap_or_default(),
-                        kind: if program_types.contains(&(i as u32)) {
-                            PouKind::Program
-                        } else {
-                            PouKind::FunctionBlock
-                        },
-                        entry: 0,
+                        kind: PouKind::from_code(t.elem)
+                            .ok_or_else(|| bad("an instance of an unknown kind of POU"))?,
                         instance_size: u32_of(t.size)?,
-                        frame_size: 0,
-                        frame_init_at: 0,
-                        frame_template: (0, 0),
                         vars,
                         instance_type: i as TypeRef,
                     });
@@ -434,23 +428,14 @@ impl Tables {
             .map(&mut program)
             .collect::<Result<Vec<_>, Error>>()?;
 
-        Ok(Model {
-            image: Image {
-                code: Vec::new(),
-                consts: Vec::new(),
-                data_size: 0,
-                init: Vec::new(),
-                stack_size: 0,
+        Ok(Loaded {
+            model: Model {
                 types,
                 pous,
                 globals,
                 configs,
                 programs,
                 io,
-                calls: Vec::new(),
-                elems: Vec::new(),
-                lines: Vec::new(),
-                files: Vec::new(),
             },
             regions,
             bodies,
@@ -477,7 +462,7 @@ unsafe fn var(m: &CMember) -> Option<VarDesc> {
         ty: m.ty,
         kind,
         offset: u32::try_from(m.offset).ok()?,
-        in_frame: false,
+        in_frame: m.in_frame != 0,
         is_ref: m.is_ref != 0,
         location: location(m.location),
         constant: m.constant != 0,

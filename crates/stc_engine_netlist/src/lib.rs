@@ -3,10 +3,9 @@
 //! is what runs, not an in-memory shortcut) and simulated one cycle per run
 //! of the program instance, behind the runtime's engine interface.
 //!
-//! The program model and the memory are the VM's: the module is compiled
-//! to bytecode only for its tables and its initial data area, which hold
-//! every variable the runtime reads and writes (`--set`, stimuli, reports,
-//! connections), at the VM's addresses. Each circuit input and register
+//! The program model and the memory are `stc_ir::model`'s: the model's
+//! canonical data area holds every variable the runtime reads and writes
+//! (`--set`, stimuli, reports, connections), at the model's addresses. Each circuit input and register
 //! whose name is a run-time path is mapped to its place in that memory:
 //! before a cycle the circuit takes their values from memory (what the
 //! runtime wrote), after it the registers' new values go back. Cells no
@@ -15,21 +14,22 @@
 
 use std::sync::Arc;
 
+use stc_ir::model::repr::{read_scalar, write_scalar};
+use stc_ir::model::{Model, ProgramInst};
 use stc_netlist::{Simulator, StepError};
 use stc_runtime::engine::{Engine, Memory};
 use stc_runtime::path::{Scope, View};
 use stc_values::ElemType;
-use stc_vm::image::{Image, ProgramInst};
-use stc_vm::machine::{read_scalar, write_scalar};
-use stc_vm::{Machine, VmFault};
+use stc_vm::VmFault;
 
 /// Why a program cannot run on the netlist engine.
 #[derive(Debug)]
 pub enum Error {
     /// The program cannot be a circuit (a diagnostic: exit status 1).
     Refused(Box<stc_netlist::Refusal>),
-    /// The bytecode compiler's tables could not be made.
-    Model(stc_vm::CompileError),
+    /// The program model could not be made (a bug: the pipeline lays the
+    /// module out before any back end runs).
+    Model(String),
     /// The document does not read back (a bug in stc).
     Read(stc_netlist::xml::ReadError),
     /// No PROGRAM to run, or several.
@@ -55,8 +55,10 @@ struct Mapped {
 }
 
 pub struct NetlistEngine {
-    /// The model and the memory (never run).
-    vm: Machine,
+    /// The program model, its initial data area, and the memory.
+    model: Arc<Model>,
+    init: Vec<u8>,
+    mem: Vec<u8>,
     /// The document, for `reset`.
     doc: String,
     sim: Simulator,
@@ -73,16 +75,21 @@ impl NetlistEngine {
         let p = stc_netlist::choose_program(module, program).map_err(Error::Choose)?;
         let circuit = stc_netlist::translate(module, p).map_err(Error::Refused)?;
         let doc = stc_netlist::xml::write(&circuit);
-        let image = stc_vm::compile(module).map_err(Error::Model)?;
-        NetlistEngine::load(Arc::new(image), doc)
+        let layouts = stc_ir::layout::Layouts::compute(module)
+            .map_err(|d| Error::Model(format!("{} layout errors", d.len())))?;
+        let data =
+            stc_ir::model::build(module, &layouts).map_err(|e| Error::Model(format!("{e:?}")))?;
+        NetlistEngine::load(Arc::new(data.model), data.init, doc)
     }
 
-    /// The engine of a document over the model `image`.
-    pub fn load(image: Arc<Image>, doc: String) -> Result<NetlistEngine, Error> {
+    /// The engine of a document over `model` and its initial data area.
+    pub fn load(model: Arc<Model>, init: Vec<u8>, doc: String) -> Result<NetlistEngine, Error> {
         let circuit = stc_netlist::xml::read(&doc).map_err(Error::Read)?;
         let program = circuit.name.clone();
         Ok(NetlistEngine {
-            vm: Machine::new(image),
+            model,
+            mem: init.clone(),
+            init,
             doc,
             sim: Simulator::new(circuit),
             program,
@@ -93,10 +100,10 @@ impl NetlistEngine {
     /// The cells of the circuit that a path names, against the program
     /// instance `inst`.
     fn resolve(&self, inst: &ProgramInst) -> Vec<Mapped> {
-        let image = self.vm.image_arc().clone();
+        let model = Arc::clone(&self.model);
         let instances = std::slice::from_ref(inst);
         let scope = Scope {
-            image: &image,
+            model: &model,
             instances,
             config: None,
         };
@@ -110,7 +117,7 @@ impl NetlistEngine {
             };
             let View::Type(t) = place.view else { continue };
             // (An elementary value, an enumeration or a subrange.)
-            if image.scalar_of(t).is_none() {
+            if model.scalar_of(t).is_none() {
                 continue;
             }
             out.push(Mapped {
@@ -125,19 +132,19 @@ impl NetlistEngine {
 
 impl Memory for NetlistEngine {
     fn bytes(&self, addr: u32, len: u32) -> Option<&[u8]> {
-        self.vm.memory().bytes(addr, len)
+        self.mem.as_slice().bytes(addr, len)
     }
     fn bytes_mut(&mut self, addr: u32, len: u32) -> Option<&mut [u8]> {
-        self.vm.memory_mut().bytes_mut(addr, len)
+        self.mem.as_mut_slice().bytes_mut(addr, len)
     }
     fn deref(&self, slot: u32) -> Option<u32> {
-        self.vm.memory().deref(slot)
+        self.mem.as_slice().deref(slot)
     }
 }
 
 impl Engine for NetlistEngine {
-    fn image(&self) -> &Arc<Image> {
-        self.vm.image_arc()
+    fn model(&self) -> &Arc<Model> {
+        &self.model
     }
 
     fn run_program(
@@ -147,8 +154,7 @@ impl Engine for NetlistEngine {
         _max_steps: u64,
     ) -> Result<u64, VmFault> {
         let pou = self
-            .vm
-            .image_arc()
+            .model
             .pous
             .get(inst.pou as usize)
             .map(|p| p.name.clone())
@@ -165,8 +171,8 @@ impl Engine for NetlistEngine {
         for m in &map {
             let v = m
                 .loc
-                .address(self.vm.memory())
-                .and_then(|a| read_scalar(self.vm.memory(), a, m.elem));
+                .address(self.mem.as_slice())
+                .and_then(|a| read_scalar(&self.mem, a, m.elem));
             if let Some(v) = v {
                 self.sim.set(&m.name, v);
             }
@@ -177,8 +183,8 @@ impl Engine for NetlistEngine {
                 let Some(v) = self.sim.get(&m.name).cloned() else {
                     continue;
                 };
-                if let Some(a) = m.loc.address(self.vm.memory()) {
-                    write_scalar(self.vm.memory_mut(), a, m.elem, &v);
+                if let Some(a) = m.loc.address(self.mem.as_slice()) {
+                    write_scalar(&mut self.mem, a, m.elem, &v);
                 }
             }
         }
@@ -200,7 +206,7 @@ impl Engine for NetlistEngine {
     }
 
     fn reset(&mut self) {
-        self.vm.reset();
+        self.mem.clone_from(&self.init);
         if let Ok(c) = stc_netlist::xml::read(&self.doc) {
             self.sim = Simulator::new(c);
         }

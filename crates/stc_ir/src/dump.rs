@@ -125,7 +125,7 @@ impl Dumper<'_> {
                 inouts,
                 outputs,
             } => {
-                let fbp = &self.m.pous[fb.0 as usize];
+                let fbp = &self.m.pous[*fb];
                 let mut args: Vec<String> = inputs
                     .iter()
                     .map(|(v, e)| {
@@ -230,7 +230,7 @@ impl Dumper<'_> {
         let mut s = match &p.root {
             Root::Var(v) => self.var_name(self.pou.var(*v)),
             Root::Global(g) => format!("global {}", {
-                let g = &self.m.globals[g.0 as usize];
+                let g = &self.m.globals[*g];
                 self.m.spelled(g.name, g.span)
             }),
             Root::Direct(a) => a.to_string(),
@@ -240,7 +240,7 @@ impl Dumper<'_> {
                 Proj::Field(_) | Proj::FbVar(..) => {
                     let name = match proj {
                         Proj::FbVar(fb, v) => {
-                            let var = self.m.pous[fb.0 as usize].var(*v);
+                            let var = self.m.pous[*fb].var(*v);
                             self.m.spelled(var.name, var.span).to_string()
                         }
                         Proj::Field(i) => format!("#{i}"),
@@ -286,7 +286,7 @@ impl Dumper<'_> {
                 inouts,
                 outputs,
             } => {
-                let f = &self.m.pous[func.0 as usize];
+                let f = &self.m.pous[*func];
                 let mut args: Vec<String> = inputs
                     .iter()
                     .map(|(v, x)| {

@@ -230,8 +230,8 @@ impl Direct<'_> {
         let from = self
             .m
             .pous
-            .get(callee.0 as usize)
-            .and_then(|p| p.vars.get(o.var.0 as usize))
+            .get_id(callee)
+            .and_then(|p| p.vars.get_id(o.var))
             .map(|v| self.m.types.scalar(v.ty));
         let to = self.m.types.scalar(o.target.ty);
         let converts = match (from, to) {
@@ -566,15 +566,15 @@ PROGRAM P VAR r : INT; END_VAR r := A(); END_PROGRAM";
             col: 1,
         };
         let (ca, cb) = (call(ib), call(ia));
-        m.pous[ia].body.push(ca);
-        m.pous[ib].body.push(cb);
+        m.pous[stc_sema::PouId(ia as u32)].body.push(ca);
+        m.pous[stc_sema::PouId(ib as u32)].body.push(cb);
         assert!(!super::may_fault(&m)[ia]);
         let fault = Stmt {
             kind: StmtKind::Fault(crate::FaultKind::DivisionByZero),
             line: 1,
             col: 1,
         };
-        m.pous[ib].body.push(fault);
+        m.pous[stc_sema::PouId(ib as u32)].body.push(fault);
         let f = super::may_fault(&m);
         assert!(f[ia] && f[ib]);
         assert!(f[find(&m, "P")]);

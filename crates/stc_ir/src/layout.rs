@@ -9,7 +9,8 @@
 //! each aligned to its own alignment.
 
 use stc_diagnostics::{Code, Diagnostic, Span};
-use stc_sema::{TypeId, TypeKind, TypeTable, VarId};
+use stc_sema::idx::IdVec;
+use stc_sema::{PouId, TypeId, TypeKind, TypeTable, VarId};
 use stc_syntax::ast::PouKind;
 use stc_syntax::token::ElemType;
 
@@ -99,9 +100,9 @@ pub struct Layouts {
     types: Vec<Option<Lay>>,
     /// Offset of each struct field, by type.
     fields: Vec<Vec<u32>>,
-    pub pous: Vec<PouLayout>,
+    pub pous: IdVec<PouId, PouLayout>,
     /// By POU: whether its instance and frame fit (`Err`: too large).
-    pou_ok: Vec<Result<(), TooLarge>>,
+    pou_ok: IdVec<PouId, Result<(), TooLarge>>,
     /// By type: whether its being too large is reported at a declaration
     /// of it, or is part of an enclosing array's (reported with it).
     covered: Vec<bool>,
@@ -115,9 +116,9 @@ pub struct PouLayout {
     pub instance: Layout,
     pub frame: Layout,
     /// Offset of each variable in the instance or in the frame (by storage).
-    pub offsets: Vec<u32>,
+    pub offsets: IdVec<VarId, u32>,
     /// Whether each variable lives in the frame.
-    pub in_frame: Vec<bool>,
+    pub in_frame: IdVec<VarId, bool>,
 }
 
 impl Default for Layout {
@@ -162,13 +163,13 @@ impl Layouts {
         let mut l = Layouts {
             types: vec![None; m.types.len()],
             fields: vec![Vec::new(); m.types.len()],
-            pous: vec![PouLayout::default(); m.pous.len()],
-            pou_ok: vec![Ok(()); m.pous.len()],
+            pous: m.pous.iter().map(|_| PouLayout::default()).collect(),
+            pou_ok: m.pous.iter().map(|_| Ok(())).collect(),
             covered: vec![false; m.types.len()],
             diagnostics: Vec::new(),
         };
-        let mut state = vec![0u8; m.pous.len()];
-        for p in 0..m.pous.len() {
+        let mut state: IdVec<PouId, u8> = m.pous.iter().map(|_| 0).collect();
+        for p in m.pous.ids() {
             l.pou(m, p, &mut state);
         }
         for g in &m.globals {
@@ -228,7 +229,14 @@ impl Layouts {
 
     /// The layout of a declaration of type `t` named `what` at `span`,
     /// reporting it when its (anonymous) type is too large.
-    fn decl(&mut self, m: &Module, t: TypeId, span: Span, what: String, state: &mut [u8]) -> Lay {
+    fn decl(
+        &mut self,
+        m: &Module,
+        t: TypeId,
+        span: Span,
+        what: String,
+        state: &mut IdVec<PouId, u8>,
+    ) -> Lay {
         let l = self.ty(m, t, state);
         match l {
             Err(e) if !e.reported => {
@@ -264,12 +272,12 @@ impl Layouts {
             for r in &c.resources {
                 for i in &r.programs {
                     let what = format!("program instance `{}`", m.spelled(i.name, i.name_span));
-                    let lay = self.pous[i.pou.0 as usize].instance;
+                    let lay = self.pous[i.pou].instance;
                     objects.push((lay, i.name_span, what));
                 }
             }
         }
-        for (p, pou) in m.pous.iter().enumerate() {
+        for (p, pou) in m.pous.iter_enumerated() {
             if pou.kind == PouKind::Program {
                 let what = format!("program `{}`", m.spelled(pou.name, pou.name_span));
                 objects.push((self.pous[p].instance, pou.name_span, what));
@@ -288,7 +296,7 @@ impl Layouts {
         }
     }
 
-    fn pou(&mut self, m: &Module, p: usize, state: &mut [u8]) {
+    fn pou(&mut self, m: &Module, p: PouId, state: &mut IdVec<PouId, u8>) {
         if state[p] != 0 {
             // 1: in progress (an instance containing itself is reported by
             // the analyser as recursion), 2: done.
@@ -347,14 +355,14 @@ impl Layouts {
         self.pous[p] = PouLayout {
             instance,
             frame,
-            offsets,
-            in_frame,
+            offsets: offsets.into(),
+            in_frame: in_frame.into(),
         };
         self.pou_ok[p] = ok;
         state[p] = 2;
     }
 
-    fn ty(&mut self, m: &Module, t: TypeId, state: &mut [u8]) -> Lay {
+    fn ty(&mut self, m: &Module, t: TypeId, state: &mut IdVec<PouId, u8>) -> Lay {
         if let Some(l) = self.types.get(t.0 as usize).copied().flatten() {
             return l;
         }
@@ -425,13 +433,13 @@ impl Layouts {
                 }
             }
             TypeKind::Fb(p) | TypeKind::Program(p) => {
-                self.pou(m, p.0 as usize, state);
-                if state[p.0 as usize] != 2 {
+                self.pou(m, p, state);
+                if state[p] != 2 {
                     // An instance containing itself (the analyser reports
                     // the recursion): no size, and nothing cached.
                     return Ok(Layout::default());
                 }
-                self.pou_ok[p.0 as usize].map(|()| self.pous[p.0 as usize].instance)
+                self.pou_ok[p].map(|()| self.pous[p].instance)
             }
         };
         // A named type too large is reported at its name, once.
@@ -488,7 +496,7 @@ impl Layouts {
     /// Offset of a variable of a POU of the module, in its instance or
     /// frame.
     pub fn var_offset(&self, p: stc_sema::PouId, v: VarId) -> u32 {
-        self.pous[p.0 as usize].offsets[v.0 as usize]
+        self.pous[p].offsets[v]
     }
 }
 

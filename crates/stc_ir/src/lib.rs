@@ -39,9 +39,11 @@ pub mod dump;
 pub mod faults;
 pub mod layout;
 mod lower;
+pub mod model;
 pub mod visit;
 
 use stc_diagnostics::Span;
+use stc_sema::idx::IdVec;
 use stc_sema::{GlobalId, PouId, TypeId, TypeTable, VarId};
 use stc_syntax::ast::PouKind;
 use stc_syntax::literal::{AddrSize, DirectAddress};
@@ -70,8 +72,8 @@ pub(crate) fn test_module(src: &str) -> Module {
 /// A whole program ready for a back end.
 pub struct Module {
     pub types: TypeTable,
-    pub pous: Vec<Pou>,
-    pub globals: Vec<Global>,
+    pub pous: IdVec<PouId, Pou>,
+    pub globals: IdVec<GlobalId, Global>,
     pub configs: Vec<stc_sema::ConfigDef>,
     /// Names as spelled at their declaration, by symbol (the last
     /// declaration of the symbol wins: see [`Module::spelled`]).
@@ -94,32 +96,31 @@ impl Module {
         name: Symbol,
         ty: TypeId,
         ctx: Option<(usize, usize)>,
-    ) -> Option<usize> {
-        let named = |g: &&GlobalId| self.globals[g.0 as usize].name == name;
+    ) -> Option<GlobalId> {
+        let named = |g: &&GlobalId| self.globals[**g].name == name;
         if let Some(conf) = ctx.and_then(|(c, _)| self.configs.get(c)) {
             let res = ctx.and_then(|(_, r)| conf.resources.get(r));
             if let Some(g) = res.and_then(|res| res.globals.iter().find(named)) {
-                return Some(g.0 as usize);
+                return Some(*g);
             }
             if let Some(g) = conf.globals.iter().find(named) {
-                return Some(g.0 as usize);
+                return Some(*g);
             }
         }
-        let in_config = |gi: usize| self.config_of_global(gi).is_some();
+        let in_config = |g: GlobalId| self.config_of_global(g).is_some();
         // (Outside the configurations that sema checked: only a global of
         // the external's type.)
         let fits =
-            |i: usize| self.globals[i].name == name && self.same_type(self.globals[i].ty, ty);
-        let top = (0..self.globals.len()).find(|&i| fits(i) && !in_config(i));
-        top.or_else(|| (0..self.globals.len()).find(|&i| fits(i)))
+            |g: GlobalId| self.globals[g].name == name && self.same_type(self.globals[g].ty, ty);
+        let top = self.globals.ids().find(|&g| fits(g) && !in_config(g));
+        top.or_else(|| self.globals.ids().find(|&g| fits(g)))
     }
 
     /// The configuration a global belongs to (declared in it or in one of
     /// its resources); `None` for a global outside every configuration.
-    pub fn config_of_global(&self, gi: usize) -> Option<usize> {
-        let id = stc_sema::GlobalId(gi as u32);
+    pub fn config_of_global(&self, g: GlobalId) -> Option<usize> {
         self.configs.iter().position(|c| {
-            c.globals.contains(&id) || c.resources.iter().any(|r| r.globals.contains(&id))
+            c.globals.contains(&g) || c.resources.iter().any(|r| r.globals.contains(&g))
         })
     }
 
@@ -185,7 +186,7 @@ impl Module {
     }
 
     pub fn pou(&self, p: PouId) -> &Pou {
-        &self.pous[p.0 as usize]
+        &self.pous[p]
     }
 
     /// The name declared at `span` as spelled there (else as [`Module::name`]).
@@ -259,7 +260,7 @@ pub struct Var {
 pub struct Pou {
     pub kind: PouKind,
     pub name: Symbol,
-    pub vars: Vec<Var>,
+    pub vars: IdVec<VarId, Var>,
     /// The function's result variable.
     pub result: Option<VarId>,
     pub body: Vec<Stmt>,
@@ -273,7 +274,7 @@ pub struct Pou {
 
 impl Pou {
     pub fn var(&self, v: VarId) -> &Var {
-        &self.vars[v.0 as usize]
+        &self.vars[v]
     }
 }
 

@@ -1,6 +1,9 @@
 //! Lowering: the analysed syntax tree to the IR.
 
+mod il;
+
 use stc_diagnostics::{SourceMap, Span};
+use stc_sema::idx::IdVec;
 use stc_sema::{
     Analysis, BoundArgKind, CallInfo, CallTarget, InitValue, PouId, Res, Section, TypeId, TypeKind,
     VarId,
@@ -92,9 +95,10 @@ pub fn lower(ast: &Ast, analysis: Analysis, interner: &Interner, sources: &Sourc
             a: &analysis,
             sources,
             pou: PouId(i as u32),
-            vars: Vec::new(),
+            vars: IdVec::new(),
             keeps: &keeps,
             pending: Vec::new(),
+            cr_vars: rustc_hash::FxHashMap::default(),
         };
         pous.push(l.pou(def, src));
     }
@@ -113,7 +117,7 @@ pub fn lower(ast: &Ast, analysis: Analysis, interner: &Interner, sources: &Sourc
         .collect();
     Module {
         types: analysis.types,
-        pous,
+        pous: pous.into(),
         globals,
         configs: analysis.configs,
         names,
@@ -126,13 +130,16 @@ struct Lowerer<'a> {
     a: &'a Analysis,
     sources: &'a SourceMap,
     pou: PouId,
-    vars: Vec<Var>,
+    vars: IdVec<VarId, Var>,
     /// Per POU: whether its implicit EN and ENO have storage.
     keeps: &'a [bool],
     /// Statements that must run before the statement being lowered: calls
     /// with EN or ENO taken out of an expression (and the operands before
     /// them, so evaluation stays left to right).
     pending: Vec<Stmt>,
+    /// In an Instruction List body: the hidden variable of the current
+    /// result for each type it takes.
+    cr_vars: rustc_hash::FxHashMap<TypeId, VarId>,
 }
 
 impl<'a> Lowerer<'a> {
@@ -234,6 +241,10 @@ impl<'a> Lowerer<'a> {
             }
         }
         body.extend(self.stmts(&src.body));
+        if let Some(il) = &src.il {
+            let stmts = self.il_body(il);
+            body.extend(stmts);
+        }
         let (file, _) = self
             .sources
             .locate(def.span.lo)
@@ -472,7 +483,7 @@ impl<'a> Lowerer<'a> {
         let Some(v) = self.a.pou(self.pou).lookup(var.sym) else {
             return;
         };
-        let ty = self.vars[v.0 as usize].ty;
+        let ty = self.vars[v].ty;
         let Some(elem) = self.a.types.numeric(ty) else {
             return;
         };
@@ -1136,6 +1147,7 @@ impl<'a> Lowerer<'a> {
                 }
                 _ => ExprKind::Load(self.place(e)),
             },
+            AK::IlCr => ExprKind::Load(self.cr_place(ty)),
             AK::Literal(_) | AK::EnumValue { .. } | AK::Error | AK::Deref(_) => {
                 ExprKind::Const(Value::Int(0))
             }

@@ -36,19 +36,21 @@ pub const XSD: &str = include_str!("../netlist.xsd");
 /// choose (for the command's usage error).
 pub fn choose_program(m: &stc_ir::Module, name: Option<&str>) -> Result<stc_sema::PouId, String> {
     use stc_syntax::ast::PouKind;
-    let programs: Vec<usize> = (0..m.pous.len())
-        .filter(|&i| m.pous[i].kind == PouKind::Program && !m.pous[i].is_std)
+    let programs: Vec<stc_sema::PouId> = m
+        .pous
+        .iter_enumerated()
+        .filter(|(_, p)| p.kind == PouKind::Program && !p.is_std)
+        .map(|(i, _)| i)
         .collect();
-    let spelled = |i: usize| m.spelled(m.pous[i].name, m.pous[i].name_span).to_string();
+    let spelled = |i: stc_sema::PouId| m.spelled(m.pous[i].name, m.pous[i].name_span).to_string();
     match name {
         Some(n) => programs
             .iter()
             .copied()
             .find(|&i| spelled(i).eq_ignore_ascii_case(n))
-            .map(|i| stc_sema::PouId(i as u32))
             .ok_or_else(|| format!("no PROGRAM named `{n}`")),
         None => match programs.as_slice() {
-            [one] => Ok(stc_sema::PouId(*one as u32)),
+            [one] => Ok(*one),
             [] => Err("the sources have no PROGRAM".to_string()),
             many => Err(format!(
                 "several PROGRAMs: choose one with --program ({})",

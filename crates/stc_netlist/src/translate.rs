@@ -217,7 +217,7 @@ struct Tr<'m> {
     mark: Vec<u32>,
     generation: u32,
     fals: NetId,
-    globals: FxHashMap<usize, SlotId>,
+    globals: FxHashMap<stc_sema::GlobalId, SlotId>,
     directs: FxHashMap<String, SlotId>,
     privates: FxHashMap<(u32, u32), SlotId>,
     /// The path of each function block instance, by its slot.
@@ -462,7 +462,7 @@ impl<'m> Tr<'m> {
         }
     }
 
-    fn global(&mut self, gi: usize) -> SlotId {
+    fn global(&mut self, gi: stc_sema::GlobalId) -> SlotId {
         if let Some(s) = self.globals.get(&gi) {
             return *s;
         }
@@ -572,7 +572,7 @@ impl<'m> Tr<'m> {
             instance: name.to_string(),
         };
         if pou.kind != stc_syntax::ast::PouKind::Program {
-            return Err(self.refuse(&fr, Code::E1005, "only a PROGRAM can be a circuit"));
+            return Err(self.refuse(&fr, Code::E1105, "only a PROGRAM can be a circuit"));
         }
         // The program's own variables: inputs are input modules, the rest
         // registers (outputs also shown by output modules).
@@ -602,7 +602,7 @@ impl<'m> Tr<'m> {
                 let vn = m.spelled(v.name, v.span);
                 let mut r = self.refuse(
                     &fr,
-                    Code::E1002,
+                    Code::E1102,
                     format!("the output `{vn}` is a STRING: a circuit has no strings"),
                 );
                 r.pou_span = v.span;
@@ -621,7 +621,7 @@ impl<'m> Tr<'m> {
             {
                 let mut r = self.refuse(
                     &fr,
-                    Code::E1005,
+                    Code::E1105,
                     "a program's VAR_IN_OUT has nothing to refer to in a circuit",
                 );
                 r.pou_span = var.span;
@@ -673,7 +673,7 @@ impl<'m> Tr<'m> {
         if self.b.components() > limits::COMPONENTS {
             return Err(self.refuse(
                 fr,
-                Code::E1006,
+                Code::E1106,
                 format!(
                     "the circuit would have more than {} components",
                     limits::COMPONENTS
@@ -713,7 +713,7 @@ impl<'m> Tr<'m> {
                 let Loc::Fixed(inst) = loc else {
                     return Err(self.refuse(
                         fr,
-                        Code::E1003,
+                        Code::E1103,
                         "a call of a function block instance chosen by a run-time index",
                     ));
                 };
@@ -723,7 +723,7 @@ impl<'m> Tr<'m> {
                     let v = match self.child(inst, o.var.0 as usize) {
                         Some(slot) => self.read(fr, &Loc::Fixed(slot))?,
                         None => {
-                            return Err(self.refuse(fr, Code::E1005, "an output without storage"))
+                            return Err(self.refuse(fr, Code::E1105, "an output without storage"))
                         }
                     };
                     self.output(fr, o, v)?;
@@ -764,7 +764,7 @@ impl<'m> Tr<'m> {
                         self.at = (s.line, s.col);
                         return Err(self.refuse(
                             fr,
-                            Code::E1001,
+                            Code::E1101,
                             format!(
                                 "a loop whose number of iterations is not known when compiling (WHILE, REPEAT, or FOR with run-time bounds), or above {}",
                                 limits::LOOP_ITERATIONS
@@ -1015,7 +1015,7 @@ impl<'m> Tr<'m> {
                     Val::S(self.b.op(Kind::Unary(stc_values::UnOp::Not), vec![n], t).0)
                 }
                 Val::A(_) => {
-                    return Err(self.refuse(fr, Code::E1005, "a negated structured output"))
+                    return Err(self.refuse(fr, Code::E1105, "a negated structured output"))
                 }
             }
         } else {
@@ -1060,7 +1060,7 @@ impl<'m> Tr<'m> {
     fn enter(&mut self, fr: &Frame) -> R<()> {
         self.depth += 1;
         if self.depth > 64 {
-            return Err(self.refuse(fr, Code::E1005, "calls nested more than 64 deep"));
+            return Err(self.refuse(fr, Code::E1105, "calls nested more than 64 deep"));
         }
         self.budget(fr)
     }
@@ -1078,7 +1078,7 @@ impl<'m> Tr<'m> {
         for (v, e) in inputs {
             let val = self.expr(fr, e)?;
             let Some(slot) = self.child(inst, v.0 as usize) else {
-                return Err(self.refuse(fr, Code::E1005, "an input without storage"));
+                return Err(self.refuse(fr, Code::E1105, "an input without storage"));
             };
             self.store(fr, &Loc::Fixed(slot), val)?;
         }
@@ -1174,7 +1174,7 @@ impl<'m> Tr<'m> {
         for o in outputs {
             let v = match callee.binds[o.var.0 as usize].clone() {
                 Bind::Slot(s) => self.read(&callee, &Loc::Fixed(s))?,
-                _ => return Err(self.refuse(fr, Code::E1005, "an output without storage")),
+                _ => return Err(self.refuse(fr, Code::E1105, "an output without storage")),
             };
             self.output(fr, o, v)?;
         }
@@ -1192,12 +1192,12 @@ impl<'m> Tr<'m> {
                 _ => {
                     return Err(self.refuse(
                         fr,
-                        Code::E1005,
+                        Code::E1105,
                         "a variable without storage in a circuit",
                     ))
                 }
             },
-            Root::Global(g) => Loc::Fixed(self.global(g.0 as usize)),
+            Root::Global(g) => Loc::Fixed(self.global(*g)),
             Root::Direct(a) => Loc::Fixed(self.direct(a, p.ty, None)),
         };
         for proj in &p.proj {
@@ -1208,7 +1208,7 @@ impl<'m> Tr<'m> {
                 Proj::Part(..) => {
                     return Err(self.refuse(
                         fr,
-                        Code::E1005,
+                        Code::E1105,
                         "access to a part of a bit string (`x.3`, `w.%B1`): not in the component library yet",
                     ))
                 }
@@ -1222,14 +1222,14 @@ impl<'m> Tr<'m> {
         Ok(match loc {
             Loc::Fixed(s) => match self.child(s, i) {
                 Some(c) => Loc::Fixed(c),
-                None => return Err(self.refuse(fr, Code::E1005, bad())),
+                None => return Err(self.refuse(fr, Code::E1105, bad())),
             },
             Loc::Dyn { idx, elems } => {
                 let mut out = Vec::with_capacity(elems.len());
                 for e in elems {
                     match self.child(e, i) {
                         Some(c) => out.push(c),
-                        None => return Err(self.refuse(fr, Code::E1005, bad())),
+                        None => return Err(self.refuse(fr, Code::E1105, bad())),
                     }
                 }
                 Loc::Dyn { idx, elems: out }
@@ -1268,7 +1268,7 @@ impl<'m> Tr<'m> {
         let Loc::Fixed(arr) = loc else {
             return Err(self.refuse(
                 fr,
-                Code::E1003,
+                Code::E1103,
                 "an array element chosen by a run-time index inside another one chosen at run time",
             ));
         };
@@ -1283,13 +1283,13 @@ impl<'m> Tr<'m> {
             }
             return match usize::try_from(off).ok().and_then(|o| self.child(arr, o)) {
                 Some(c) => Ok(Loc::Fixed(c)),
-                None => Err(self.refuse(fr, Code::E1005, "a constant index outside its array")),
+                None => Err(self.refuse(fr, Code::E1105, "a constant index outside its array")),
             };
         }
         if count > limits::INDEXED_ELEMENTS {
             return Err(self.refuse(
                 fr,
-                Code::E1003,
+                Code::E1103,
                 format!(
                     "an array of {count} elements indexed at run time (a circuit selects among at most {})",
                     limits::INDEXED_ELEMENTS
@@ -1331,11 +1331,11 @@ impl<'m> Tr<'m> {
             }
             Slot::Text => Err(self.refuse(
                 fr,
-                Code::E1002,
+                Code::E1102,
                 "a STRING or WSTRING variable: a circuit has no strings",
             )),
             Slot::Absent => {
-                Err(self.refuse(fr, Code::E1005, "a variable without storage in a circuit"))
+                Err(self.refuse(fr, Code::E1105, "a variable without storage in a circuit"))
             }
         }
     }
@@ -1409,7 +1409,7 @@ impl<'m> Tr<'m> {
                 if self.cells[c].kind == CellKind::Input {
                     return Err(self.refuse(
                         fr,
-                        Code::E1004,
+                        Code::E1104,
                         "an assignment to an input of the circuit (a program VAR_INPUT or a %I variable), which the circuit only reads",
                     ));
                 }
@@ -1430,12 +1430,12 @@ impl<'m> Tr<'m> {
             }
             (Slot::Text, _) => Err(self.refuse(
                 fr,
-                Code::E1002,
+                Code::E1102,
                 "a STRING or WSTRING variable: a circuit has no strings",
             )),
             _ => Err(self.refuse(
                 fr,
-                Code::E1005,
+                Code::E1105,
                 "an assignment whose value does not match its target's shape",
             )),
         }
@@ -1458,7 +1458,7 @@ impl<'m> Tr<'m> {
             Val::S(n) => Ok(n),
             Val::A(_) => Err(self.refuse(
                 fr,
-                Code::E1005,
+                Code::E1105,
                 "a structured value where a single value is needed",
             )),
         }
@@ -1472,13 +1472,13 @@ impl<'m> Tr<'m> {
         match self.scalar(t) {
             Some(ElemType::String | ElemType::Wstring) => Err(self.refuse(
                 fr,
-                Code::E1002,
+                Code::E1102,
                 "a STRING or WSTRING operation: a circuit has no strings",
             )),
             Some(e) => Ok(e),
             None => Err(self.refuse(
                 fr,
-                Code::E1005,
+                Code::E1105,
                 "a structured value where a single value is needed",
             )),
         }
@@ -1543,7 +1543,7 @@ impl<'m> Tr<'m> {
                 if matches!(func, I::SplitDate | I::SplitTod | I::SplitDt) {
                     return Err(self.refuse(
                         fr,
-                        Code::E1005,
+                        Code::E1105,
                         "SPLIT_DATE, SPLIT_TOD and SPLIT_DT: not in the component library yet",
                     ));
                 }

@@ -17,15 +17,15 @@
 //!
 //! The VM ([`stc_vm::Machine`]) implements it below; the generated C,
 //! compiled and loaded as a shared library, implements it in `stc_engine_c`.
-//! Values are stored as `stc_vm::machine::read_scalar` and `read_string`
+//! Values are stored as `stc_ir::model::repr` says
 //! read them in every engine (little-endian, two's complement, IEC 60559):
 //! the C back end's memory representation is the same (see stc_meta.h).
 
 use std::sync::Arc;
 
+use stc_ir::model::repr::{read_scalar, read_string, write_scalar, write_string};
+use stc_ir::model::{Model, ProgramInst, TypeDesc, TypeRef};
 use stc_values::Value;
-use stc_vm::image::{Image, ProgramInst, TypeDesc, TypeRef};
-use stc_vm::machine::{read_scalar, read_string, write_scalar, write_string};
 use stc_vm::{Machine, VmFault};
 
 /// Memory addressed as the model's addresses.
@@ -62,7 +62,7 @@ impl Memory for [u8] {
 /// A loaded program that runs: see the module documentation.
 pub trait Engine: Memory {
     /// The program model, with this engine's addresses.
-    fn image(&self) -> &Arc<Image>;
+    fn model(&self) -> &Arc<Model>;
 
     /// Runs the body of a program instance once at task time `now_ns`
     /// with at most `max_steps` steps of the watchdog; returns the steps
@@ -97,8 +97,8 @@ impl Memory for Machine {
 }
 
 impl Engine for Machine {
-    fn image(&self) -> &Arc<Image> {
-        Machine::image_arc(self)
+    fn model(&self) -> &Arc<Model> {
+        &Machine::image(self).model
     }
 
     fn run_program(
@@ -120,11 +120,11 @@ impl Engine for Machine {
 }
 
 /// The size in bytes of a scalar or string value of type `ty`.
-fn value_size(image: &Image, ty: TypeRef) -> Option<u32> {
-    if let Some(e) = image.scalar_of(ty) {
+fn value_size(model: &Model, ty: TypeRef) -> Option<u32> {
+    if let Some(e) = model.scalar_of(ty) {
         return Some(stc_ir::layout::elem_size(e));
     }
-    match image.types.get(ty as usize)? {
+    match model.types.get(ty as usize)? {
         TypeDesc::String { wide, cap } => {
             Some(2u32.checked_add(cap.checked_mul(if *wide { 2 } else { 1 })?)?)
         }
@@ -133,12 +133,12 @@ fn value_size(image: &Image, ty: TypeRef) -> Option<u32> {
 }
 
 /// Reads a scalar or string value (enumerations read as their integer).
-pub fn read_value(mem: &dyn Memory, image: &Image, addr: u32, ty: TypeRef) -> Option<Value> {
-    let bytes = mem.bytes(addr, value_size(image, ty)?)?;
-    if let Some(e) = image.scalar_of(ty) {
+pub fn read_value(mem: &dyn Memory, model: &Model, addr: u32, ty: TypeRef) -> Option<Value> {
+    let bytes = mem.bytes(addr, value_size(model, ty)?)?;
+    if let Some(e) = model.scalar_of(ty) {
         return read_scalar(bytes, 0, e);
     }
-    match image.types.get(ty as usize)? {
+    match model.types.get(ty as usize)? {
         TypeDesc::String { wide, cap } => read_string(bytes, 0, *wide, *cap),
         _ => None,
     }
@@ -146,17 +146,17 @@ pub fn read_value(mem: &dyn Memory, image: &Image, addr: u32, ty: TypeRef) -> Op
 
 /// Writes a scalar or string value (strings truncated to their capacity;
 /// integers keep their low bits: the caller has converted the value).
-pub fn write_value(mem: &mut dyn Memory, image: &Image, addr: u32, ty: TypeRef, v: &Value) -> bool {
-    let Some(size) = value_size(image, ty) else {
+pub fn write_value(mem: &mut dyn Memory, model: &Model, addr: u32, ty: TypeRef, v: &Value) -> bool {
+    let Some(size) = value_size(model, ty) else {
         return false;
     };
     let Some(bytes) = mem.bytes_mut(addr, size) else {
         return false;
     };
-    if let Some(e) = image.scalar_of(ty) {
+    if let Some(e) = model.scalar_of(ty) {
         return write_scalar(bytes, 0, e, v);
     }
-    match image.types.get(ty as usize) {
+    match model.types.get(ty as usize) {
         Some(TypeDesc::String { wide, cap }) => write_string(bytes, 0, *wide, *cap, v),
         _ => false,
     }

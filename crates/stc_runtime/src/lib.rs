@@ -30,7 +30,7 @@ mod testing;
 
 pub use engine::{Engine, Memory};
 pub use error::Error;
-pub use report::{Format, Report};
+pub use report::{Format, Renderer, Report};
 pub use schedule::{choose, Chosen, Plan};
 pub use sim::{run, Options, Pacer, Simulation, Unpaced, DEFAULT_MAX_STEPS};
 pub use stimulus::Stimulus;
@@ -58,7 +58,7 @@ mod robustness {
     use crate::path::{parse_path, split_list, Scope, View};
     use crate::schedule::{Chosen, Plan};
     use crate::stimulus::{split_record, Stimulus};
-    use crate::testing::sample;
+    use crate::testing::sample_model as sample;
     use crate::value::parse_for;
 
     proptest! {
@@ -68,9 +68,9 @@ mod robustness {
             let _ = split_list(&text);
             let img = sample();
             let plan = Plan::new(&img, Chosen::Config(0), None).unwrap();
-            let scope = Scope { image: &img, instances: &plan.instances, config: plan.config };
+            let scope = Scope { model: &img, instances: &plan.instances, config: plan.config };
             if let Ok(p) = scope.resolve(&text) {
-                let _ = p.loc.address(&img.init);
+                let _ = p.loc.address(&crate::testing::sample().init);
             }
         }
 

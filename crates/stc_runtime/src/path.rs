@@ -8,8 +8,8 @@
 //! a [`Step::Deref`] that [`Place::address`] follows each time the place is
 //! read or written, so a place stays right when the reference changes.
 
+use stc_ir::model::{Model, ProgramInst, TypeDesc, TypeRef, VarDesc, VarKind};
 use stc_syntax::literal::{parse_address, parse_based_int, parse_int, DirectAddress};
-use stc_vm::image::{Image, ProgramInst, TypeDesc, TypeRef, VarDesc, VarKind};
 
 use crate::engine::Memory;
 use crate::error::{Error, Result};
@@ -233,7 +233,7 @@ fn is_nameable(v: &VarDesc) -> bool {
 /// run, and the configuration chosen (for its globals).
 #[derive(Clone, Copy)]
 pub struct Scope<'a> {
-    pub image: &'a Image,
+    pub model: &'a Model,
     pub instances: &'a [ProgramInst],
     pub config: Option<u32>,
 }
@@ -259,11 +259,11 @@ impl<'a> Scope<'a> {
     fn address(&self, a: &DirectAddress, text: &str) -> Result<Place> {
         let same = |x: &DirectAddress| x.area == a.area && x.size == a.size && x.path == a.path;
         let slot = self
-            .image
+            .model
             .io
             .iter()
             .find(|s| s.address == *a)
-            .or_else(|| self.image.io.iter().find(|s| same(&s.address)))
+            .or_else(|| self.model.io.iter().find(|s| same(&s.address)))
             .ok_or_else(|| {
                 Error::Path(format!(
                     "unknown address `{}`: the program uses no variable at {a}",
@@ -285,7 +285,7 @@ impl<'a> Scope<'a> {
             .iter()
             .find(|i| i.name.eq_ignore_ascii_case(n))
         {
-            let pou = self.image.pous.get(inst.pou as usize).ok_or_else(|| {
+            let pou = self.model.pous.get(inst.pou as usize).ok_or_else(|| {
                 Error::Path(format!("program instance `{}` has no code", inst.name))
             })?;
             return Ok(Place {
@@ -295,8 +295,8 @@ impl<'a> Scope<'a> {
                 constant: false,
             });
         }
-        let named = |g: &&stc_vm::image::GlobalDesc| g.name.eq_ignore_ascii_case(n);
-        let globals = &self.image.globals;
+        let named = |g: &&stc_ir::model::GlobalDesc| g.name.eq_ignore_ascii_case(n);
+        let globals = &self.model.globals;
         let found = globals
             .iter()
             .filter(named)
@@ -335,7 +335,7 @@ impl<'a> Scope<'a> {
             View::Type(t) => *t,
             View::Slice { .. } => return Err(no_member(format!("`{}` (ARRAY)", place.name))),
         };
-        match self.image.types.get(ty as usize) {
+        match self.model.types.get(ty as usize) {
             Some(TypeDesc::Struct { fields, .. }) => {
                 let f = fields
                     .iter()
@@ -347,7 +347,7 @@ impl<'a> Scope<'a> {
                 Ok(place)
             }
             Some(TypeDesc::Instance { pou }) => {
-                let code = self.image.pous.get(*pou as usize);
+                let code = self.model.pous.get(*pou as usize);
                 let v = code
                     .and_then(|c| {
                         c.vars
@@ -374,7 +374,7 @@ impl<'a> Scope<'a> {
             other => Err(no_member(format!(
                 "`{}` ({})",
                 place.name,
-                describe(self.image, other)
+                describe(self.model, other)
             ))),
         }
     }
@@ -385,14 +385,14 @@ impl<'a> Scope<'a> {
         while !left.is_empty() {
             let (elem, dims, stride) = match &place.view {
                 View::Slice { elem, dims, stride } => (*elem, dims.clone(), *stride),
-                View::Type(t) => match self.image.types.get(*t as usize) {
+                View::Type(t) => match self.model.types.get(*t as usize) {
                     Some(TypeDesc::Array { elem, dims, stride }) => (*elem, dims.clone(), *stride),
                     other => {
                         return Err(Error::Path(format!(
                             "unknown variable `{}`: `{}` ({}) is not an array",
                             text.trim(),
                             place.name,
-                            describe(self.image, other)
+                            describe(self.model, other)
                         )))
                     }
                 },
@@ -438,7 +438,7 @@ impl<'a> Scope<'a> {
 }
 
 /// The name of a type, for messages.
-pub fn describe(image: &Image, t: Option<&TypeDesc>) -> String {
+pub fn describe(model: &Model, t: Option<&TypeDesc>) -> String {
     match t {
         Some(TypeDesc::Scalar(e)) => e.name().into(),
         Some(TypeDesc::Subrange { base, lo, hi }) => format!("{} ({lo}..{hi})", base.name()),
@@ -448,7 +448,7 @@ pub fn describe(image: &Image, t: Option<&TypeDesc>) -> String {
         Some(TypeDesc::Array { .. }) => "ARRAY".into(),
         Some(TypeDesc::Struct { name: Some(n), .. }) => n.clone(),
         Some(TypeDesc::Struct { name: None, .. }) => "STRUCT".into(),
-        Some(TypeDesc::Instance { pou }) => match image.pous.get(*pou as usize) {
+        Some(TypeDesc::Instance { pou }) => match model.pous.get(*pou as usize) {
             Some(p) => p.name.clone(),
             None => "an instance".into(),
         },
@@ -535,10 +535,10 @@ mod tests {
     }
 
     fn resolve(text: &str) -> Result<Place> {
-        let img = sample();
+        let img = sample_model();
         let plan = Plan::new(&img, Chosen::Config(0), None).unwrap();
         let scope = Scope {
-            image: &img,
+            model: &img,
             instances: &plan.instances,
             config: plan.config,
         };

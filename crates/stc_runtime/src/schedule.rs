@@ -8,7 +8,7 @@
 //! function of the image and the options, so schedules are unit-tested
 //! without running any code.
 
-use stc_vm::image::{Image, ProgramInst, Source};
+use stc_ir::model::{Model, ProgramInst, Source};
 
 use crate::error::{Error, Result};
 
@@ -25,9 +25,9 @@ pub enum Chosen {
 
 /// Picks what runs: `--config NAME`, `--program TYPE`, else the only
 /// CONFIGURATION, else the only PROGRAM.
-pub fn choose(image: &Image, config: Option<&str>, program: Option<&str>) -> Result<Chosen> {
-    let config_names: Vec<&str> = image.configs.iter().map(|c| c.name.as_str()).collect();
-    let program_names: Vec<&str> = image.programs.iter().map(|p| p.name.as_str()).collect();
+pub fn choose(model: &Model, config: Option<&str>, program: Option<&str>) -> Result<Chosen> {
+    let config_names: Vec<&str> = model.configs.iter().map(|c| c.name.as_str()).collect();
+    let program_names: Vec<&str> = model.programs.iter().map(|p| p.name.as_str()).collect();
     match (config, program) {
         (Some(_), Some(_)) => Err(Error::Option(
             "--config and --program cannot be used together".into(),
@@ -114,22 +114,22 @@ pub struct Plan {
 
 impl Plan {
     /// The plan of `chosen`; `tick_ns` overrides the default tick.
-    pub fn new(image: &Image, chosen: Chosen, tick_ns: Option<i64>) -> Result<Plan> {
+    pub fn new(model: &Model, chosen: Chosen, tick_ns: Option<i64>) -> Result<Plan> {
         let mut instances = Vec::new();
         let mut tasks = Vec::new();
         let mut free = Vec::new();
         let config = match chosen {
             Chosen::Program(p) => {
-                let inst = image.programs.get(p).ok_or_else(|| {
-                    Error::Selection(format!("the image has no program number {p}"))
+                let inst = model.programs.get(p).ok_or_else(|| {
+                    Error::Selection(format!("the model has no program number {p}"))
                 })?;
                 instances.push(inst.clone());
                 free.push(0);
                 None
             }
             Chosen::Config(c) => {
-                let conf = image.configs.get(c).ok_or_else(|| {
-                    Error::Selection(format!("the image has no configuration number {c}"))
+                let conf = model.configs.get(c).ok_or_else(|| {
+                    Error::Selection(format!("the model has no configuration number {c}"))
                 })?;
                 for res in &conf.resources {
                     let first = tasks.len();
@@ -177,6 +177,34 @@ impl Plan {
             free,
             tick_ns,
         })
+    }
+
+    /// What the plan changes silently otherwise: a periodic task whose
+    /// interval the tick does not divide runs at another rate (every
+    /// least common multiple of the two), said here.
+    pub fn warnings(&self) -> Vec<String> {
+        let show = |ns: i128| match i64::try_from(ns) {
+            Ok(ns) => stc_syntax::literal::format_duration(ns, false),
+            Err(_) => "longer than the largest TIME".to_string(),
+        };
+        let mut out = Vec::new();
+        for t in &self.tasks {
+            let Some(interval) = t.interval_ns else {
+                continue;
+            };
+            if interval % self.tick_ns != 0 {
+                let (a, b) = (i128::from(interval), i128::from(self.tick_ns));
+                let lcm = a / i128::from(gcd(interval, self.tick_ns)) * b;
+                out.push(format!(
+                    "warning: task `{}` has INTERVAL {}, which the tick {} does not divide: it runs every {}",
+                    t.name,
+                    show(a),
+                    show(b),
+                    show(lcm)
+                ));
+            }
+        }
+        out
     }
 
     /// The time of cycle `k` (1-based): (k - 1) * tick; `None` past the
@@ -245,8 +273,8 @@ fn gcd(mut a: i64, mut b: i64) -> i64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::testing::{empty, inst, sample, task};
-    use stc_vm::image::{ConfigDesc, ResourceDesc};
+    use crate::testing::{inst, sample_model, task};
+    use stc_ir::model::{ConfigDesc, ResourceDesc};
 
     const MS: i64 = 1_000_000;
 
@@ -257,7 +285,7 @@ mod tests {
         }
     }
 
-    fn resource(tasks: Vec<stc_vm::image::TaskDesc>, programs: Vec<ProgramInst>) -> ResourceDesc {
+    fn resource(tasks: Vec<stc_ir::model::TaskDesc>, programs: Vec<ProgramInst>) -> ResourceDesc {
         ResourceDesc {
             name: None,
             tasks,
@@ -267,7 +295,7 @@ mod tests {
 
     #[test]
     fn the_only_configuration_is_chosen_before_the_only_program() {
-        let img = sample();
+        let img = sample_model();
         assert_eq!(choose(&img, None, None), Ok(Chosen::Config(0)));
         assert_eq!(choose(&img, Some("PLANT"), None), Ok(Chosen::Config(0)));
         assert_eq!(choose(&img, None, Some("other")), Ok(Chosen::Program(1)));
@@ -275,14 +303,16 @@ mod tests {
 
     #[test]
     fn the_only_program_runs_without_configuration() {
-        let mut img = empty();
-        img.programs = vec![inst("Main", 0, 0, None)];
+        let img = Model {
+            programs: vec![inst("Main", 0, 0, None)],
+            ..Model::default()
+        };
         assert_eq!(choose(&img, None, None), Ok(Chosen::Program(0)));
     }
 
     #[test]
     fn unknown_or_ambiguous_choices_list_the_candidates() {
-        let img = sample();
+        let img = sample_model();
         assert_eq!(
             choose(&img, Some("Line"), None),
             Err(Error::Selection(
@@ -295,7 +325,7 @@ mod tests {
                 "no program type `Pump`: the programs are Main, Other".into()
             ))
         );
-        let mut two = sample();
+        let mut two = sample_model();
         two.configs.push(config("Line", Vec::new()));
         assert_eq!(
             choose(&two, None, None),
@@ -306,13 +336,13 @@ mod tests {
             ))
         );
         assert_eq!(
-            choose(&empty(), None, None),
+            choose(&Model::default(), None, None),
             Err(Error::Selection(
                 "nothing to run: the sources declare no CONFIGURATION and no PROGRAM".into()
             ))
         );
         assert_eq!(
-            choose(&empty(), Some("X"), None),
+            choose(&Model::default(), Some("X"), None),
             Err(Error::Selection(
                 "no configuration `X`: the sources declare no CONFIGURATION".into()
             ))
@@ -326,24 +356,39 @@ mod tests {
     }
 
     #[test]
+    fn a_tick_that_does_not_divide_an_interval_is_a_warning() {
+        let img = sample_model();
+        let plan = Plan::new(&img, Chosen::Config(0), Some(4 * MS)).unwrap();
+        assert_eq!(
+            plan.warnings(),
+            vec![
+                "warning: task `slow` has INTERVAL T#30ms, which the tick T#4ms does not divide: it runs every T#60ms".to_string(),
+                "warning: task `fast` has INTERVAL T#10ms, which the tick T#4ms does not divide: it runs every T#20ms".to_string(),
+            ]
+        );
+        let plan = Plan::new(&img, Chosen::Config(0), Some(5 * MS)).unwrap();
+        assert!(plan.warnings().is_empty());
+    }
+
+    #[test]
     fn default_tick_is_the_gcd_of_the_periodic_intervals() {
         assert_eq!(default_tick([]), 10 * MS);
         assert_eq!(default_tick([20 * MS, 30 * MS]), 10 * MS);
         assert_eq!(default_tick([10 * MS, 25 * MS]), 5 * MS);
         assert_eq!(default_tick([100 * MS]), 100 * MS);
         assert_eq!(default_tick([7, 0, 21]), 7);
-        let plan = Plan::new(&sample(), Chosen::Config(0), None).unwrap();
+        let plan = Plan::new(&sample_model(), Chosen::Config(0), None).unwrap();
         assert_eq!(plan.tick_ns, 10 * MS);
-        let plan = Plan::new(&sample(), Chosen::Program(0), None).unwrap();
+        let plan = Plan::new(&sample_model(), Chosen::Program(0), None).unwrap();
         assert_eq!(plan.tick_ns, 10 * MS);
-        let plan = Plan::new(&sample(), Chosen::Config(0), Some(5 * MS)).unwrap();
+        let plan = Plan::new(&sample_model(), Chosen::Config(0), Some(5 * MS)).unwrap();
         assert_eq!(plan.tick_ns, 5 * MS);
-        assert!(Plan::new(&sample(), Chosen::Config(0), Some(0)).is_err());
+        assert!(Plan::new(&sample_model(), Chosen::Config(0), Some(0)).is_err());
     }
 
     #[test]
     fn tasks_run_by_priority_then_declaration_order() {
-        let plan = Plan::new(&sample(), Chosen::Config(0), None).unwrap();
+        let plan = Plan::new(&sample_model(), Chosen::Config(0), None).unwrap();
         let names: Vec<&str> = plan.tasks.iter().map(|t| t.name.as_str()).collect();
         assert_eq!(names, ["ev", "slow", "fast"]);
         let inst: Vec<&str> = plan.instances.iter().map(|i| i.name.as_str()).collect();
@@ -354,7 +399,7 @@ mod tests {
 
     #[test]
     fn equal_priorities_keep_declaration_order_over_resources() {
-        let mut img = empty();
+        let mut img = Model::default();
         img.configs.push(config(
             "C",
             vec![
@@ -384,7 +429,7 @@ mod tests {
 
     #[test]
     fn periodic_tasks_run_when_the_cycle_time_is_a_multiple_of_their_interval() {
-        let mut img = empty();
+        let mut img = Model::default();
         img.configs.push(config(
             "C",
             vec![resource(
@@ -418,7 +463,7 @@ mod tests {
 
     #[test]
     fn event_tasks_run_only_when_fired_and_free_programs_always() {
-        let plan = Plan::new(&sample(), Chosen::Config(0), None).unwrap();
+        let plan = Plan::new(&sample_model(), Chosen::Config(0), None).unwrap();
         let names = |v: Vec<usize>| -> Vec<String> {
             v.into_iter()
                 .map(|i| plan.instances[i].name.clone())
@@ -451,7 +496,7 @@ mod tests {
 
     #[test]
     fn a_standalone_program_is_one_free_instance() {
-        let plan = Plan::new(&sample(), Chosen::Program(1), None).unwrap();
+        let plan = Plan::new(&sample_model(), Chosen::Program(1), None).unwrap();
         assert_eq!(plan.instances.len(), 1);
         assert_eq!(plan.instances[0].name, "Other");
         assert!(plan.tasks.is_empty());
@@ -461,7 +506,7 @@ mod tests {
 
     #[test]
     fn a_task_index_outside_the_resource_is_an_error_not_a_panic() {
-        let mut img = empty();
+        let mut img = Model::default();
         img.configs.push(config(
             "C",
             vec![resource(vec![], vec![inst("p", 0, 0, Some(3))])],

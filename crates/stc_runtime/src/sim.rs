@@ -17,11 +17,11 @@
 
 use std::sync::Arc;
 
+use stc_ir::model::{Model, Source, TypeRef, VarKind};
 use stc_ir::FaultKind;
 use stc_syntax::literal::AddrArea;
 use stc_values::{convert, Value};
-use stc_vm::image::{Image, Source, TypeRef, VarKind};
-use stc_vm::{Machine, VmFault};
+use stc_vm::{Image, Machine, VmFault};
 
 use crate::engine::{read_value, write_value, Engine};
 
@@ -75,7 +75,7 @@ struct Inputs {
 
 pub struct Simulation {
     /// The engine's program model (shared with it, read only).
-    image: Arc<Image>,
+    model: Arc<Model>,
     engine: Box<dyn Engine>,
     plan: Plan,
     watch: Vec<Place>,
@@ -110,12 +110,12 @@ impl Simulation {
         opts: &Options,
         stimulus: Option<&Stimulus>,
     ) -> Result<Simulation> {
-        let image_arc = Arc::clone(engine.image());
-        let image = &*image_arc;
-        let chosen = choose(image, opts.config.as_deref(), opts.program.as_deref())?;
-        let plan = Plan::new(image, chosen, opts.tick_ns)?;
+        let model_arc = Arc::clone(engine.model());
+        let model = &*model_arc;
+        let chosen = choose(model, opts.config.as_deref(), opts.program.as_deref())?;
+        let plan = Plan::new(model, chosen, opts.tick_ns)?;
         let scope = Scope {
-            image,
+            model,
             instances: &plan.instances,
             config: plan.config,
         };
@@ -126,7 +126,7 @@ impl Simulation {
                 .split_once('=')
                 .ok_or_else(|| Error::Option(format!("--set `{s}`: expected PATH=VALUE")))?;
             let place = writable(scope.resolve(path)?)?;
-            let v = parse_for(image, &place.view, value)
+            let v = parse_for(model, &place.view, value)
                 .map_err(|e| Error::Value(format!("--set {}: {e}", place.name)))?;
             sets.push((place, v));
         }
@@ -147,19 +147,31 @@ impl Simulation {
                 columns.push(place);
             }
             for row in &st.rows {
+                let cycle = row.at.cycle(plan.tick_ns).ok_or_else(|| {
+                    let when = match row.at {
+                        crate::stimulus::At::Time(t) => {
+                            stc_syntax::literal::format_duration(t, false)
+                        }
+                        crate::stimulus::At::Cycle(c) => c.to_string(),
+                    };
+                    err(
+                        row.line,
+                        format!(
+                            "{when} is not the time of a cycle with a tick of {}",
+                            stc_syntax::literal::format_duration(plan.tick_ns, false)
+                        ),
+                    )
+                })?;
                 let mut writes = Vec::new();
                 for (place, cell) in columns.iter().zip(&row.cells) {
                     let Some(text) = cell else { continue };
-                    let v = parse_for(image, &place.view, text)
+                    let v = parse_for(model, &place.view, text)
                         .map_err(|e| err(row.line, format!("{}: {e}", place.name)))?;
                     writes.push((place.clone(), v));
                 }
                 match inputs.last_mut() {
-                    Some(last) if last.cycle == row.cycle => last.writes.extend(writes),
-                    _ => inputs.push(Inputs {
-                        cycle: row.cycle,
-                        writes,
-                    }),
+                    Some(last) if last.cycle == cycle => last.writes.extend(writes),
+                    _ => inputs.push(Inputs { cycle, writes }),
                 }
             }
         }
@@ -181,7 +193,7 @@ impl Simulation {
         let tasks = plan.tasks.len();
         let task_of = task_of(&plan);
         let mut sim = Simulation {
-            image: Arc::clone(&image_arc),
+            model: Arc::clone(&model_arc),
             engine,
             plan,
             watch,
@@ -201,7 +213,7 @@ impl Simulation {
 
     fn apply_sets(&mut self) -> Result<()> {
         for (place, v) in &self.sets {
-            if !write(&self.image, self.engine.as_mut(), place, v) {
+            if !write(&self.model, self.engine.as_mut(), place, v) {
                 return Err(Error::Value(format!(
                     "--set {}: the variable is outside the memory",
                     place.name
@@ -255,7 +267,7 @@ impl Simulation {
                 break;
             }
             for (place, v) in &inputs.writes {
-                write(&self.image, self.engine.as_mut(), place, v);
+                write(&self.model, self.engine.as_mut(), place, v);
             }
             self.next_input += 1;
         }
@@ -263,7 +275,7 @@ impl Simulation {
         for (i, t) in self.plan.tasks.iter().enumerate() {
             self.fired[i] = false;
             if let Some(Source::Addr { offset, ty }) = &t.single {
-                let v = read_value(self.engine.as_ref(), &self.image, *offset, *ty)
+                let v = read_value(self.engine.as_ref(), &self.model, *offset, *ty)
                     .and_then(|v| v.as_int())
                     .is_some_and(|i| i != 0);
                 self.fired[i] = v && !self.single_prev[i];
@@ -293,8 +305,8 @@ impl Simulation {
             let inst = &self.plan.instances[i];
             for (off, ty, Source::Addr { offset, ty: sty }) in &inst.inputs {
                 let dst = inst.offset.wrapping_add(*off);
-                copy(&self.image, self.engine.as_mut(), *offset, *sty, dst, *ty)
-                    .map_err(|k| connection_fault(&self.image, inst.pou, k))?;
+                copy(&self.model, self.engine.as_mut(), *offset, *sty, dst, *ty)
+                    .map_err(|k| connection_fault(&self.model, inst.pou, k))?;
             }
             let n = self.engine.run_program(inst, now, budget)?;
             if let Some(t) = task {
@@ -302,8 +314,8 @@ impl Simulation {
             }
             for (off, ty, Source::Addr { offset, ty: dty }) in &inst.outputs {
                 let src = inst.offset.wrapping_add(*off);
-                copy(&self.image, self.engine.as_mut(), src, *ty, *offset, *dty)
-                    .map_err(|k| connection_fault(&self.image, inst.pou, k))?;
+                copy(&self.model, self.engine.as_mut(), src, *ty, *offset, *dty)
+                    .map_err(|k| connection_fault(&self.model, inst.pou, k))?;
             }
         }
         Ok(())
@@ -324,7 +336,7 @@ impl Simulation {
                 .iter()
                 .map(|p| {
                     let v = match p.loc.address(e) {
-                        Some(a) => read(&self.image, e, a, &p.view),
+                        Some(a) => read(&self.model, e, a, &p.view),
                         None => crate::value::Shown::Unreadable,
                     };
                     (p.name.clone(), v)
@@ -359,17 +371,17 @@ fn writable(place: Place) -> Result<Place> {
 }
 
 /// Writes a value to a place; false when it is not in memory.
-fn write(image: &Image, engine: &mut dyn Engine, place: &Place, v: &Value) -> bool {
+fn write(model: &Model, engine: &mut dyn Engine, place: &Place, v: &Value) -> bool {
     let (Some(addr), View::Type(ty)) = (place.loc.address(engine), &place.view) else {
         return false;
     };
-    write_value(engine, image, addr, *ty, v)
+    write_value(engine, model, addr, *ty, v)
 }
 
 /// Copies a connection: bytes when the types are the same, else the value
 /// converted (a program input INT from a SINT global).
 fn copy(
-    image: &Image,
+    model: &Model,
     m: &mut dyn Engine,
     src: u32,
     src_ty: TypeRef,
@@ -377,13 +389,13 @@ fn copy(
     dst_ty: TypeRef,
 ) -> Result<(), FaultKind> {
     let (Some(sd), Some(dd)) = (
-        image.types.get(src_ty as usize),
-        image.types.get(dst_ty as usize),
+        model.types.get(src_ty as usize),
+        model.types.get(dst_ty as usize),
     ) else {
         return Ok(());
     };
     if src_ty == dst_ty || sd == dd {
-        let n = image.type_size(src_ty).min(u32::MAX as u64) as u32;
+        let n = model.type_size(src_ty).min(u32::MAX as u64) as u32;
         // Most connections are scalars: no allocation for them.
         let mut small = [0u8; 16];
         if let Some(b) = m.bytes(src, n) {
@@ -401,8 +413,8 @@ fn copy(
         }
         return Ok(());
     }
-    let elem = |t: TypeRef| image.scalar_of(t);
-    let Some(v) = read_value(m, image, src, src_ty) else {
+    let elem = |t: TypeRef| model.scalar_of(t);
+    let Some(v) = read_value(m, model, src, src_ty) else {
         return Ok(());
     };
     let v = match (elem(src_ty), elem(dst_ty)) {
@@ -411,14 +423,14 @@ fn copy(
         }
         _ => v,
     };
-    write_value(m, image, dst, dst_ty, &v);
+    write_value(m, model, dst, dst_ty, &v);
     Ok(())
 }
 
-fn connection_fault(image: &Image, pou: u32, kind: FaultKind) -> VmFault {
+fn connection_fault(model: &Model, pou: u32, kind: FaultKind) -> VmFault {
     VmFault {
         kind,
-        pou: image
+        pou: model
             .pous
             .get(pou as usize)
             .map_or_else(|| "?".into(), |p| p.name.clone()),
@@ -433,7 +445,7 @@ fn connection_fault(image: &Image, pou: u32, kind: FaultKind) -> VmFault {
 /// variable (`%Q`): globals in declaration order, then those declared in
 /// the program instances.
 pub fn default_watch(scope: &Scope) -> Vec<Place> {
-    let image = scope.image;
+    let model = scope.model;
     let mut out: Vec<Place> = Vec::new();
     let add = |out: &mut Vec<Place>, path: String| {
         if let Ok(p) = scope.resolve(&path) {
@@ -443,7 +455,7 @@ pub fn default_watch(scope: &Scope) -> Vec<Place> {
         }
     };
     for inst in scope.instances {
-        let Some(pou) = image.pous.get(inst.pou as usize) else {
+        let Some(pou) = model.pous.get(inst.pou as usize) else {
             continue;
         };
         for v in &pou.vars {
@@ -452,7 +464,7 @@ pub fn default_watch(scope: &Scope) -> Vec<Place> {
             }
         }
     }
-    for g in &image.globals {
+    for g in &model.globals {
         let visible = g.config.is_none() || g.config == scope.config;
         if visible
             && g.location
@@ -463,7 +475,7 @@ pub fn default_watch(scope: &Scope) -> Vec<Place> {
         }
     }
     for inst in scope.instances {
-        let Some(pou) = image.pous.get(inst.pou as usize) else {
+        let Some(pou) = model.pous.get(inst.pou as usize) else {
             continue;
         };
         for v in &pou.vars {

@@ -25,6 +25,8 @@
 
 use stc_syntax::literal::{parse_address, DirectAddress};
 use stc_syntax::token::ElemType;
+use std::sync::Arc;
+
 use stc_vm::image::*;
 use stc_vm::instr::{Instr, Op, Tgt};
 
@@ -80,17 +82,23 @@ fn reference(name: &str, ty: TypeRef, kind: VarKind, offset: u32) -> VarDesc {
     }
 }
 
-fn pou(name: &str, kind: PouKind, size: u32, vars: Vec<VarDesc>, ty: TypeRef) -> PouCode {
-    PouCode {
+fn pou(name: &str, kind: PouKind, size: u32, vars: Vec<VarDesc>, ty: TypeRef) -> PouDesc {
+    PouDesc {
         name: name.into(),
         kind,
-        entry: 0,
         instance_size: size,
+        vars,
+        instance_type: ty,
+    }
+}
+
+/// The code of a POU starting at `entry`.
+fn code(entry: u32) -> PouCode {
+    PouCode {
+        entry,
         frame_size: 8,
         frame_init_at: 0,
         frame_template: (0, 0),
-        vars,
-        instance_type: ty,
     }
 }
 
@@ -143,12 +151,8 @@ pub fn empty() -> Image {
         data_size: 0,
         init: Vec::new(),
         stack_size: 64,
-        types: Vec::new(),
+        model: Arc::new(Model::default()),
         pous: Vec::new(),
-        globals: Vec::new(),
-        configs: Vec::new(),
-        programs: Vec::new(),
-        io: Vec::new(),
         calls: Vec::new(),
         elems: Vec::new(),
         lines: Vec::new(),
@@ -224,7 +228,7 @@ pub fn sample() -> Image {
         ],
         T_TIMER,
     );
-    let mut main = pou(
+    let main = pou(
         "Main",
         PouKind::Program,
         136,
@@ -249,7 +253,6 @@ pub fn sample() -> Image {
         ],
         T_MAIN,
     );
-    main.entry = 1;
     let other = pou(
         "Other",
         PouKind::Program,
@@ -309,9 +312,7 @@ pub fn sample() -> Image {
         offset: 5,
         ty: T_BOOL,
     });
-    Image {
-        data_size: 168,
-        init,
+    let model = Model {
         types,
         pous: vec![timer, main, other],
         globals,
@@ -344,6 +345,12 @@ pub fn sample() -> Image {
                 ty: T_BOOL,
             },
         ],
+    };
+    Image {
+        data_size: 168,
+        init,
+        model: Arc::new(model),
+        pous: vec![code(0), code(1), code(0)],
         lines: vec![LineEntry {
             pc: 1,
             pou: 1,
@@ -354,4 +361,9 @@ pub fn sample() -> Image {
         files: vec!["main.st".into()],
         ..empty()
     }
+}
+
+/// The program model of [`sample`].
+pub fn sample_model() -> Model {
+    (*sample().model).clone()
 }

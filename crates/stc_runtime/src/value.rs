@@ -8,10 +8,10 @@
 //! nest without end and arrays larger than the memory, and answers
 //! [`Shown::Unreadable`] instead of failing.
 
+use stc_ir::model::{Model, TypeDesc, TypeRef};
 use stc_syntax::literal::decode_string;
 use stc_syntax::token::ElemType;
 use stc_values::{parse_value, Value};
-use stc_vm::image::{Image, TypeDesc, TypeRef};
 
 use crate::engine::{read_value, Memory};
 use crate::error::{Error, Result};
@@ -44,32 +44,32 @@ pub enum Shown {
 const MAX_DEPTH: u32 = 64;
 
 /// Reads what a place holds at `addr`.
-pub fn read(image: &Image, mem: &dyn Memory, addr: u32, view: &View) -> Shown {
+pub fn read(model: &Model, mem: &dyn Memory, addr: u32, view: &View) -> Shown {
     match view {
-        View::Type(t) => read_type(image, mem, addr, *t, 0),
-        View::Slice { elem, dims, stride } => read_array(image, mem, addr, *elem, dims, *stride, 0),
+        View::Type(t) => read_type(model, mem, addr, *t, 0),
+        View::Slice { elem, dims, stride } => read_array(model, mem, addr, *elem, dims, *stride, 0),
     }
 }
 
-fn read_type(image: &Image, mem: &dyn Memory, addr: u32, ty: TypeRef, depth: u32) -> Shown {
+fn read_type(model: &Model, mem: &dyn Memory, addr: u32, ty: TypeRef, depth: u32) -> Shown {
     if depth > MAX_DEPTH {
         return Shown::Unreadable;
     }
-    let Some(desc) = image.types.get(ty as usize) else {
+    let Some(desc) = model.types.get(ty as usize) else {
         return Shown::Unreadable;
     };
     match desc {
         TypeDesc::Scalar(e) | TypeDesc::Subrange { base: e, .. } => {
-            match read_value(mem, image, addr, ty) {
+            match read_value(mem, model, addr, ty) {
                 Some(v) => Shown::Scalar(*e, v),
                 None => Shown::Unreadable,
             }
         }
-        TypeDesc::String { .. } => match read_value(mem, image, addr, ty) {
+        TypeDesc::String { .. } => match read_value(mem, model, addr, ty) {
             Some(v) => Shown::Str(v),
             None => Shown::Unreadable,
         },
-        TypeDesc::Enum { name, values, .. } => match read_value(mem, image, addr, ty) {
+        TypeDesc::Enum { name, values, .. } => match read_value(mem, model, addr, ty) {
             Some(Value::Int(v)) => Shown::Enum {
                 ty: name.clone(),
                 name: values.iter().find(|x| x.1 == v).map(|x| x.0.clone()),
@@ -78,14 +78,14 @@ fn read_type(image: &Image, mem: &dyn Memory, addr: u32, ty: TypeRef, depth: u32
             _ => Shown::Unreadable,
         },
         TypeDesc::Array { elem, dims, stride } => {
-            read_array(image, mem, addr, *elem, dims, *stride, depth + 1)
+            read_array(model, mem, addr, *elem, dims, *stride, depth + 1)
         }
         TypeDesc::Struct { fields, .. } => Shown::Record(
             fields
                 .iter()
                 .map(|f| {
                     let v = match addr.checked_add(f.offset) {
-                        Some(a) => read_type(image, mem, a, f.ty, depth + 1),
+                        Some(a) => read_type(model, mem, a, f.ty, depth + 1),
                         None => Shown::Unreadable,
                     };
                     (f.name.clone(), v)
@@ -93,7 +93,7 @@ fn read_type(image: &Image, mem: &dyn Memory, addr: u32, ty: TypeRef, depth: u32
                 .collect(),
         ),
         TypeDesc::Instance { pou } => {
-            let Some(code) = image.pous.get(*pou as usize) else {
+            let Some(code) = model.pous.get(*pou as usize) else {
                 return Shown::Unreadable;
             };
             Shown::Record(
@@ -106,7 +106,7 @@ fn read_type(image: &Image, mem: &dyn Memory, addr: u32, ty: TypeRef, depth: u32
                             a = a.and_then(|a| mem.deref(a));
                         }
                         let shown = match a {
-                            Some(a) => read_type(image, mem, a, v.ty, depth + 1),
+                            Some(a) => read_type(model, mem, a, v.ty, depth + 1),
                             None => Shown::Unreadable,
                         };
                         (v.name.clone(), shown)
@@ -118,7 +118,7 @@ fn read_type(image: &Image, mem: &dyn Memory, addr: u32, ty: TypeRef, depth: u32
 }
 
 fn read_array(
-    image: &Image,
+    model: &Model,
     mem: &dyn Memory,
     addr: u32,
     elem: TypeRef,
@@ -127,7 +127,7 @@ fn read_array(
     depth: u32,
 ) -> Shown {
     let Some(&(lo, hi)) = dims.first() else {
-        return read_type(image, mem, addr, elem, depth + 1);
+        return read_type(model, mem, addr, elem, depth + 1);
     };
     // Every element must lie in memory: this also bounds the work a
     // corrupt descriptor can ask for.
@@ -146,7 +146,7 @@ fn read_array(
     for i in 0..len {
         let a = addr as u64 + i * row;
         items.push(match u32::try_from(a) {
-            Ok(a) => read_array(image, mem, a, elem, &dims[1..], stride, depth + 1),
+            Ok(a) => read_array(model, mem, a, elem, &dims[1..], stride, depth + 1),
             Err(_) => Shown::Unreadable,
         });
     }
@@ -157,10 +157,10 @@ fn read_array(
 /// `--set` and stimulus cells: `TRUE`, `42`, `-3.5`, `16#FF`, `T#1s`,
 /// `D#2024-01-31`, `'text'` (or the bare text, as a shell leaves it),
 /// `Color#Red` or `Red`.
-pub fn parse_for(image: &Image, view: &View, text: &str) -> Result<Value> {
+pub fn parse_for(model: &Model, view: &View, text: &str) -> Result<Value> {
     let t = text.trim();
     let desc = match view {
-        View::Type(ty) => image.types.get(*ty as usize),
+        View::Type(ty) => model.types.get(*ty as usize),
         View::Slice { .. } => None,
     };
     let whole = |what: String| {
@@ -204,7 +204,7 @@ pub fn parse_for(image: &Image, view: &View, text: &str) -> Result<Value> {
         }
         other => Err(whole(match view {
             View::Slice { .. } => "part of an ARRAY".to_string(),
-            View::Type(_) => format!("a whole {}", describe(image, other)),
+            View::Type(_) => format!("a whole {}", describe(model, other)),
         })),
     }
 }
@@ -301,11 +301,11 @@ mod tests {
     }
 
     fn read_path(path: &str) -> Shown {
-        let img = sample();
+        let img = sample_model();
         let plan =
             crate::schedule::Plan::new(&img, crate::schedule::Chosen::Config(0), None).unwrap();
         let scope = crate::path::Scope {
-            image: &img,
+            model: &img,
             instances: &plan.instances,
             config: plan.config,
         };
@@ -409,7 +409,7 @@ mod tests {
 
     #[test]
     fn memory_outside_the_machine_is_unreadable_not_a_panic() {
-        let img = sample();
+        let img = sample_model();
         let m = mem();
         assert_eq!(
             read(&img, &m, 10_000, &View::Type(T_INT)),
@@ -418,7 +418,7 @@ mod tests {
         assert_eq!(read(&img, &m, 166, &View::Type(T_ARR)), Shown::Unreadable);
         assert_eq!(read(&img, &m, 0, &View::Type(999)), Shown::Unreadable);
         // A corrupt array: 2^40 elements of stride 0.
-        let mut bad = sample();
+        let mut bad = sample_model();
         bad.types.push(TypeDesc::Array {
             elem: T_INT,
             dims: vec![(0, 1 << 40)],
@@ -428,7 +428,7 @@ mod tests {
         // A structure containing itself.
         bad.types.push(TypeDesc::Struct {
             name: None,
-            fields: vec![stc_vm::image::FieldDesc {
+            fields: vec![stc_ir::model::FieldDesc {
                 name: "me".into(),
                 ty: 17,
                 offset: 0,
@@ -444,7 +444,7 @@ mod tests {
     }
 
     fn parse(ty: TypeRef, text: &str) -> Result<Value> {
-        parse_for(&sample(), &View::Type(ty), text)
+        parse_for(&sample_model(), &View::Type(ty), text)
     }
 
     #[test]

@@ -68,6 +68,9 @@ pub(crate) struct Body {
     /// Constant propagation: values that local variables certainly hold at
     /// the current statement (seed 001 section 3.3).
     pub known: FxHashMap<VarId, Value>,
+    /// In an Instruction List body: the type of the current result for the
+    /// instruction being checked (`ExprKind::IlCr` has it).
+    pub il_cr: Option<TypeId>,
 }
 
 pub(crate) struct Sema<'a> {
@@ -120,6 +123,9 @@ pub(crate) struct Sema<'a> {
     /// Names declared by constructs reported as not supported (an
     /// INTERFACE...): uses of them are not reported again.
     pub unsupported_names: FxHashSet<Symbol>,
+    /// Operands of IL `S`/`R` that name function block instances (the
+    /// instruction sets that instance's input).
+    pub il_fb_inputs: FxHashSet<ExprId>,
 }
 
 impl<'a> Sema<'a> {
@@ -163,6 +169,7 @@ impl<'a> Sema<'a> {
             partial_index_ok: None,
             global_names: FxHashSet::default(),
             unsupported_names: ast.unsupported_names.iter().map(|n| n.sym).collect(),
+            il_fb_inputs: FxHashSet::default(),
         }
     }
 
@@ -204,6 +211,7 @@ impl<'a> Sema<'a> {
         }
         Analysis {
             implicit_used,
+            il_fb_inputs: self.il_fb_inputs,
             types: self.types,
             pous: self.pous,
             globals: self.globals,
@@ -263,13 +271,22 @@ impl<'a> Sema<'a> {
         let name_u = name.to_ascii_uppercase();
         let limit = (name.len() / 3).max(1);
         let mut best: Option<(usize, &str)> = None;
+        // A name that abbreviates or spells out one candidate (`RESET` for
+        // `R`, `PRESET` for `PV`'s `P`...): the only candidate it starts
+        // with, or that starts with it.
+        let mut affix: Vec<&str> = Vec::new();
         for c in candidates {
-            let d = edit_distance(&name_u, &c.to_ascii_uppercase());
+            let c_u = c.to_ascii_uppercase();
+            let d = edit_distance(&name_u, &c_u);
             if d <= limit && d > 0 && best.is_none_or(|(bd, _)| d < bd) {
                 best = Some((d, c));
             }
+            if d > 0 && !c_u.is_empty() && (name_u.starts_with(&c_u) || c_u.starts_with(&name_u)) {
+                affix.push(c);
+            }
         }
         best.map(|(_, c)| c.to_string())
+            .or_else(|| (affix.len() == 1).then(|| affix[0].to_string()))
     }
 
     /// The syntax of a POU.

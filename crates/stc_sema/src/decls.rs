@@ -529,17 +529,13 @@ impl<'a> Sema<'a> {
                     name,
                     span,
                 );
-                for (i, (sym, vspan)) in members.into_iter().enumerate() {
-                    let entry = self.enum_index.entry(sym).or_default();
-                    let hides = owner.is_some() && entry.iter().any(|(_, _, o)| o.is_none());
-                    entry.push((t, i as u32, owner));
-                    if hides {
-                        let shown = self.spelled(sym, vspan);
-                        self.emit(
-                            Diagnostic::new(Code::W0102, vspan, format!("the local enumeration value `{shown}` hides a global one"))
-                                .with_note("inside this POU the unqualified name means the local value; other tools may report it as ambiguous"),
-                        );
-                    }
+                // A local value hiding a global one is W0102 at each use
+                // (`warn_hidden_enum_value`).
+                for (i, (sym, _)) in members.into_iter().enumerate() {
+                    self.enum_index
+                        .entry(sym)
+                        .or_default()
+                        .push((t, i as u32, owner));
                 }
                 (t, Some(InitValue::Scalar(Value::Int(first))))
             }

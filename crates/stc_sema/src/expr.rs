@@ -127,6 +127,7 @@ impl<'a> Sema<'a> {
             }
             ExprKind::Unary { op, operand } => self.unary(e, *op, *operand, expected, scope),
             ExprKind::Binary { op, lhs, rhs } => self.binary(e, *op, *lhs, *rhs, expected, scope),
+            ExprKind::IlCr => self.body.il_cr.unwrap_or(TypeId::ERROR),
             ExprKind::Deref(base) => {
                 // `p^`: reported by the parser; the pointer itself is used.
                 self.check_expr(*base, Some(TypeId::ERROR), scope);
@@ -689,6 +690,7 @@ impl<'a> Sema<'a> {
                     let value = values[i].value;
                     self.resolutions.insert(e, Res::EnumValue(t, i as u32));
                     self.consts.insert(e, Value::Int(value));
+                    self.warn_hidden_enum_value(id, t, scope);
                     return Some(t);
                 }
             }
@@ -712,6 +714,7 @@ impl<'a> Sema<'a> {
                     self.consts.insert(e, Value::Int(value));
                 }
                 self.resolutions.insert(e, Res::EnumValue(t, i));
+                self.warn_hidden_enum_value(id, t, scope);
                 Some(t)
             }
             None if expected == Some(TypeId::ERROR) => Some(TypeId::ERROR),
@@ -732,6 +735,32 @@ impl<'a> Sema<'a> {
                 );
                 Some(TypeId::ERROR)
             }
+        }
+    }
+
+    /// W0102 at a use of an unqualified enumeration value that resolved to
+    /// a value of a POU's own anonymous enumeration (type `t`) while a
+    /// global enumeration has a value of that name, as MatIEC reports it.
+    fn warn_hidden_enum_value(&mut self, id: Ident, t: TypeId, scope: Scope) {
+        let Scope::Pou(p) = scope else { return };
+        let Some(entry) = self.enum_index.get(&id.sym) else {
+            return;
+        };
+        let local = entry.iter().any(|(ty, _, o)| *ty == t && *o == Some(p));
+        let global = entry.iter().any(|(_, _, o)| o.is_none());
+        if local && global {
+            let shown = self.spelled(id.sym, id.span);
+            self.emit(
+                Diagnostic::new(
+                    Code::W0102,
+                    id.span,
+                    format!("`{shown}` is the local enumeration value, which hides a global one"),
+                )
+                .with_label("the local value")
+                .with_note(
+                    "inside this POU the unqualified name means the local value; other tools may report it as ambiguous",
+                ),
+            );
         }
     }
 
@@ -1058,7 +1087,7 @@ impl<'a> Sema<'a> {
         }
     }
 
-    fn binary(
+    pub(crate) fn binary(
         &mut self,
         e: ExprId,
         op: BinaryOp,
@@ -1450,10 +1479,38 @@ impl<'a> Sema<'a> {
                     Ctx::Arg => (Code::E0407, format!("{what} expects {t}, not {f}")),
                 };
                 let mut d = Diagnostic::new(code, span, msg).with_label(format!("this is {f}"));
-                if let (Some(a), Some(b)) = (self.types.scalar(from), self.types.scalar(to)) {
-                    let name = format!("{}_TO_{}", a.name(), b.name());
-                    if stc_values::lookup(&name).is_some() {
-                        d = d.with_help(format!("use {name}(...) to convert explicitly"));
+                let literal = match &self.ast.expr(e).kind {
+                    ExprKind::Literal(Literal {
+                        value: LitValue::Int { value, negative },
+                        prefix: None,
+                    }) => Some((*value, *negative)),
+                    _ => None,
+                };
+                let to_elem = self.types.scalar(to);
+                match (literal, to_elem) {
+                    // `PT := 1000`: a duration is written as a TIME literal.
+                    (Some((n, false)), Some(ElemType::Time | ElemType::Ltime)) => {
+                        let prefix = if to_elem == Some(ElemType::Ltime) {
+                            "LTIME"
+                        } else {
+                            "T"
+                        };
+                        let text = if n != 0 && n % 1000 == 0 {
+                            format!("{prefix}#{}s", n / 1000)
+                        } else {
+                            format!("{prefix}#{n}ms")
+                        };
+                        d = d.with_help(format!(
+                            "a duration is written as a time literal: `{text}` if {n} means milliseconds"
+                        ));
+                    }
+                    _ => {
+                        if let (Some(a), Some(b)) = (self.types.scalar(from), to_elem) {
+                            let name = format!("{}_TO_{}", a.name(), b.name());
+                            if stc_values::lookup(&name).is_some() {
+                                d = d.with_help(format!("use {name}(...) to convert explicitly"));
+                            }
+                        }
                     }
                 }
                 self.emit(d);

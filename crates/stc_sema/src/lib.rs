@@ -20,6 +20,8 @@ mod config;
 mod decls;
 mod expr;
 mod flow;
+pub mod idx;
+mod il;
 pub mod prelude;
 mod stmt;
 #[cfg(test)]
@@ -36,16 +38,28 @@ use stc_values::{Intrinsic, Value};
 pub use types::{Compat, InitValue, TypeId, TypeKind, TypeTable};
 
 /// Index of a POU in [`Analysis::pous`].
-#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord, Default)]
 pub struct PouId(pub u32);
 
 /// Index of a variable in its POU's [`PouDef::vars`].
-#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord, Default)]
 pub struct VarId(pub u32);
 
 /// Index of a global variable in [`Analysis::globals`].
-#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord, Default)]
 pub struct GlobalId(pub u32);
+
+/// An id is shown as its position (in generated names, `FB3_Pump`).
+macro_rules! show_id {
+    ($($t:ty),*) => {$(
+        impl std::fmt::Display for $t {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                write!(f, "{}", self.0)
+            }
+        }
+    )*};
+}
+show_id!(PouId, VarId, GlobalId);
 
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Options {
@@ -284,6 +298,10 @@ pub struct Analysis {
     /// The implicit variables (EN, ENO) that some code refers to: the POU's
     /// own body, or `inst.ENO` outside it. The others need no storage.
     pub implicit_used: rustc_hash::FxHashSet<(PouId, VarId)>,
+    /// Operands of Instruction List `S`/`R` instructions that name function
+    /// block instances: the instruction sets the instance's input (the
+    /// `fb_form` of `IlSem::SetReset`), not the operand itself.
+    pub il_fb_inputs: rustc_hash::FxHashSet<ExprId>,
     pub diagnostics: Vec<Diagnostic>,
 }
 

@@ -17,7 +17,15 @@ impl<'a> Sema<'a> {
         self.resolve_pou(p);
         self.body = Body::default();
         self.stmts(&pou.body, p);
+        if let Some(il) = &pou.il {
+            self.il_body(p, il);
+        }
         self.pou_warnings(p, pou);
+    }
+
+    /// The statements an Instruction List instruction means.
+    pub(crate) fn stmts_pub(&mut self, list: &'a [Stmt], p: PouId) {
+        self.stmts(list, p);
     }
 
     fn stmts(&mut self, list: &'a [Stmt], p: PouId) {
@@ -162,6 +170,30 @@ impl<'a> Sema<'a> {
                         }
                         if let [Some(a), Some(b)] = vals {
                             let span = self.ast.expr(lo).span.to(self.ast.expr(hi).span);
+                            // A label the selector's subrange cannot reach
+                            // is an error, as one outside an elementary
+                            // selector's range is.
+                            if let TypeKind::Subrange {
+                                lo: min, hi: max, ..
+                            } = self.types.kind(expected).clone()
+                            {
+                                if a.min(b) < min || a.max(b) > max {
+                                    let shown = if a == b {
+                                        format!("{a}")
+                                    } else {
+                                        format!("{a}..{b}")
+                                    };
+                                    let msg = format!(
+                                        "the CASE label {shown} is outside the subrange {min}..{max} of the selector's type {}",
+                                        self.tname(expected)
+                                    );
+                                    self.emit(
+                                        Diagnostic::new(Code::E0702, span, msg)
+                                            .with_label("the selector never has this value"),
+                                    );
+                                    continue;
+                                }
+                            }
                             if let Some(&(_, _, prev)) =
                                 seen.iter().find(|(x, y, _)| a <= *y && *x <= b)
                             {

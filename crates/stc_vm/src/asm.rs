@@ -43,8 +43,9 @@ pub fn disassemble(img: &Image) -> String {
     for (pc, ins) in img.code.iter().enumerate() {
         let pc = pc as u32;
         if let Some(&(_, pi)) = starts.iter().find(|(e, _)| *e == pc) {
-            let p = &img.pous[pi];
-            let _ = writeln!(out, "\n.pou {}  ; {:?} {}", pi, p.kind, p.name);
+            if let Some(p) = img.model.pous.get(pi) {
+                let _ = writeln!(out, "\n.pou {}  ; {:?} {}", pi, p.kind, p.name);
+            }
         }
         while line < img.lines.len() && img.lines[line].pc <= pc {
             let l = img.lines[line];
@@ -97,7 +98,9 @@ fn operand_names(img: &Image, starts: &[(u32, usize)], pc: u32, ins: &Instr) -> 
     let Some(&(_, pi)) = starts.iter().rev().find(|(e, _)| *e <= pc) else {
         return String::new();
     };
-    let pou = &img.pous[pi];
+    let Some(pou) = img.model.pous.get(pi) else {
+        return String::new();
+    };
     let kinds = Instr::field_kinds(ins.opcode()).unwrap_or(&[]);
     let mut names = Vec::new();
     for (f, k) in ins.fields().into_iter().zip(kinds.iter()) {
@@ -117,6 +120,7 @@ fn operand_names(img: &Image, starts: &[(u32, usize)], pc: u32, ins: &Instr) -> 
                 .find(|v| v.in_frame && v.offset == op.offset())
                 .map(|v| v.name.clone()),
             MODE_ABS => img
+                .model
                 .globals
                 .iter()
                 .find(|g| g.offset == op.offset())

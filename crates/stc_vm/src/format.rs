@@ -110,16 +110,20 @@ impl Writer {
         w.u32(img.data_size);
         w.bytes(&img.init);
         w.u32(img.stack_size);
-        w.seq(&img.types, |w, t| w.type_desc(t));
-        w.seq(&img.pous, |w, p| {
+        let model = &*img.model;
+        w.seq(&model.types, |w, t| w.type_desc(t));
+        // A POU's model and code, together (the same bytes as before the
+        // model moved to stc_ir: format version 2 is unchanged).
+        let pous: Vec<(&PouDesc, &PouCode)> = model.pous.iter().zip(&img.pous).collect();
+        w.seq(&pous, |w, (p, c)| {
             w.str(&p.name);
             w.u8(p.kind.code());
-            w.u32(p.entry);
+            w.u32(c.entry);
             w.u32(p.instance_size);
-            w.u32(p.frame_size);
-            w.u32(p.frame_init_at);
-            w.u32(p.frame_template.0);
-            w.u32(p.frame_template.1);
+            w.u32(c.frame_size);
+            w.u32(c.frame_init_at);
+            w.u32(c.frame_template.0);
+            w.u32(c.frame_template.1);
             w.u32(p.instance_type);
             w.seq(&p.vars, |w, v| {
                 w.str(&v.name);
@@ -132,7 +136,7 @@ impl Writer {
                 w.u8(v.constant as u8);
             });
         });
-        w.seq(&img.globals, |w, g| {
+        w.seq(&model.globals, |w, g| {
             w.str(&g.name);
             w.u32(g.ty);
             w.u32(g.offset);
@@ -140,7 +144,7 @@ impl Writer {
             w.opt(&g.location, |w, a| w.address(a));
             w.u8(g.constant as u8);
         });
-        w.seq(&img.configs, |w, c| {
+        w.seq(&model.configs, |w, c| {
             w.str(&c.name);
             w.seq(&c.resources, |w, r| {
                 w.opt(&r.name, |w, n| w.str(n));
@@ -153,8 +157,8 @@ impl Writer {
                 w.seq(&r.programs, |w, p| w.program(p));
             });
         });
-        w.seq(&img.programs, |w, p| w.program(p));
-        w.seq(&img.io, |w, s| {
+        w.seq(&model.programs, |w, p| w.program(p));
+        w.seq(&model.io, |w, s| {
             w.address(&s.address);
             w.u32(s.offset);
             w.u32(s.ty);
@@ -601,18 +605,24 @@ impl Reader<'_> {
         let init = self.bytes()?;
         let stack_size = self.u32()?;
         let types = self.seq(|r| r.type_desc())?;
-        let pous = self.seq(|r| {
-            Ok(PouCode {
-                name: r.str()?,
-                kind: {
-                    let c = r.u8()?;
-                    PouKind::from_code(c).ok_or_else(|| r.err("an unknown POU kind"))?
-                },
-                entry: r.u32()?,
-                instance_size: r.u32()?,
+        let both = self.seq(|r| {
+            let name = r.str()?;
+            let kind = {
+                let c = r.u8()?;
+                PouKind::from_code(c).ok_or_else(|| r.err("an unknown POU kind"))?
+            };
+            let entry = r.u32()?;
+            let instance_size = r.u32()?;
+            let code = PouCode {
+                entry,
                 frame_size: r.u32()?,
                 frame_init_at: r.u32()?,
                 frame_template: (r.u32()?, r.u32()?),
+            };
+            let desc = PouDesc {
+                name,
+                kind,
+                instance_size,
                 instance_type: r.u32()?,
                 vars: r.seq(|r| {
                     Ok(VarDesc {
@@ -630,8 +640,10 @@ impl Reader<'_> {
                         constant: r.bool()?,
                     })
                 })?,
-            })
+            };
+            Ok((desc, code))
         })?;
+        let (model_pous, pous): (Vec<PouDesc>, Vec<PouCode>) = both.into_iter().unzip();
         let globals = self.seq(|r| {
             Ok(GlobalDesc {
                 name: r.str()?,
@@ -704,12 +716,15 @@ impl Reader<'_> {
             data_size,
             init,
             stack_size,
-            types,
+            model: std::sync::Arc::new(Model {
+                types,
+                pous: model_pous,
+                globals,
+                configs,
+                programs,
+                io,
+            }),
             pous,
-            globals,
-            configs,
-            programs,
-            io,
             calls,
             elems,
             lines,

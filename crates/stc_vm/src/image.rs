@@ -7,44 +7,16 @@
 //! slots), the constant pool, then the stack of call frames. Addresses are
 //! `u32` byte offsets into it.
 
-use stc_syntax::literal::DirectAddress;
+use std::sync::Arc;
+
 use stc_syntax::token::ElemType;
 
+pub use stc_ir::model::{
+    ConfigDesc, FieldDesc, GlobalDesc, IoSlot, Model, PouDesc, PouKind, ProgramInst, ResourceDesc,
+    Source, TaskDesc, TypeDesc, TypeDescKind, TypeRef, VarDesc, VarKind,
+};
+
 use crate::instr::Instr;
-
-/// A field-less enumeration whose values are a file format and an ABI:
-/// stored as a byte in `.stbc` files and written as a code in the
-/// generated C (`stc_codes.h`). Each variant has an explicit value; never
-/// renumber one. `from_code` rejects values no variant has.
-macro_rules! coded_enum {
-    ($(#[$m:meta])* $name:ident { $($(#[$vm:meta])* $variant:ident = $code:literal,)* }) => {
-        $(#[$m])*
-        #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-        #[repr(u8)]
-        pub enum $name { $($(#[$vm])* $variant = $code,)* }
-
-        impl $name {
-            /// Every variant, in the order of their codes.
-            pub const ALL: &'static [$name] = &[$($name::$variant,)*];
-
-            /// The variant's stable code.
-            pub const fn code(self) -> u8 {
-                self as u8
-            }
-
-            /// The variant of a code; `None` for a value no variant has.
-            pub fn from_code(code: u8) -> Option<$name> {
-                match code {
-                    $($code => Some($name::$variant),)*
-                    _ => None,
-                }
-            }
-        }
-    };
-}
-
-/// Index of a type in [`Image::types`].
-pub type TypeRef = u32;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Image {
@@ -56,15 +28,10 @@ pub struct Image {
     pub init: Vec<u8>,
     /// Size of the stack area (the deepest chain of frames).
     pub stack_size: u32,
-    pub types: Vec<TypeDesc>,
+    /// The program model (`stc_ir::model`) with the data area's addresses.
+    pub model: Arc<Model>,
+    /// By POU, as `model.pous`: the code and frame of each.
     pub pous: Vec<PouCode>,
-    /// Global variables, by plain name (all configurations and top-level lists).
-    pub globals: Vec<GlobalDesc>,
-    pub configs: Vec<ConfigDesc>,
-    /// A standalone instance of every PROGRAM type (for `--program`).
-    pub programs: Vec<ProgramInst>,
-    /// Process image slots: one per direct address used.
-    pub io: Vec<IoSlot>,
     /// Calls of standard functions and generic operations (by descriptor).
     pub calls: Vec<StdCall>,
     /// Array dimensions indexed by the `elem` instructions.
@@ -85,62 +52,37 @@ impl Image {
         self.data_size + self.consts.len() as u32
     }
 
-    /// The elementary type a value of type `t` is stored as (scalars,
-    /// enumerations, subranges), if it is one.
+    /// The elementary type a value of type `t` is stored as (see
+    /// [`Model::scalar_of`]).
     pub fn scalar_of(&self, t: TypeRef) -> Option<ElemType> {
-        match self.types.get(t as usize)? {
-            TypeDesc::Scalar(e)
-            | TypeDesc::Subrange { base: e, .. }
-            | TypeDesc::Enum { base: e, .. } => Some(*e),
-            _ => None,
-        }
+        self.model.scalar_of(t)
     }
 
-    /// The size in bytes of a value of type `t` (a structure without its
-    /// trailing padding); 0 for an unknown type. `u64::MAX` where
-    /// [`Image::checked_type_size`] has none: no memory holds such a
-    /// value, so every range check against it fails (the verifier rejects
-    /// an image that places one).
+    /// The size of a value of type `t` (see [`Model::type_size`]): the
+    /// verifier rejects an image that places a value without one.
     pub fn type_size(&self, t: TypeRef) -> u64 {
-        self.checked_type_size(t).unwrap_or(u64::MAX)
+        self.model.type_size(t)
     }
 
-    /// The size in bytes of a value of type `t`, computed without
-    /// overflow; `None` past `u64` or for types nested deeper than 256
-    /// (only a hostile table has either).
+    /// See [`Model::checked_type_size`].
     pub fn checked_type_size(&self, t: TypeRef) -> Option<u64> {
-        self.type_size_at(t, 0)
+        self.model.checked_type_size(t)
     }
 
-    fn type_size_at(&self, t: TypeRef, depth: u32) -> Option<u64> {
-        if depth > 256 {
-            return None;
-        }
-        Some(match self.types.get(t as usize) {
-            Some(TypeDesc::Scalar(e))
-            | Some(TypeDesc::Enum { base: e, .. })
-            | Some(TypeDesc::Subrange { base: e, .. }) => stc_ir::layout::elem_size(*e) as u64,
-            Some(TypeDesc::String { wide, cap }) => 2 + *cap as u64 * if *wide { 2 } else { 1 },
-            Some(TypeDesc::Array { dims, stride, .. }) => {
-                let n = dims.iter().try_fold(1u64, |a, (l, h)| {
-                    let n = (i128::from(*h) - i128::from(*l) + 1).max(0);
-                    a.checked_mul(u64::try_from(n).ok()?)
-                })?;
-                n.checked_mul(u64::from(*stride))?
-            }
-            Some(TypeDesc::Struct { fields, .. }) => {
-                let mut end = 0;
-                for f in fields {
-                    let e = u64::from(f.offset).checked_add(self.type_size_at(f.ty, depth + 1)?)?;
-                    end = end.max(e);
-                }
-                end
-            }
-            Some(TypeDesc::Instance { pou }) => self
-                .pous
-                .get(*pou as usize)
-                .map_or(0, |p| p.instance_size as u64),
-            None => 0,
+    /// POU `i`: its model and its code together.
+    pub fn pou(&self, i: usize) -> Option<PouView<'_>> {
+        let d = self.model.pous.get(i)?;
+        let c = self.pous.get(i)?;
+        Some(PouView {
+            name: &d.name,
+            kind: d.kind,
+            entry: c.entry,
+            instance_size: d.instance_size,
+            frame_size: c.frame_size,
+            frame_init_at: c.frame_init_at,
+            frame_template: c.frame_template,
+            instance_type: d.instance_type,
+            vars: &d.vars,
         })
     }
 
@@ -158,7 +100,7 @@ impl Image {
             Err(i) => i - 1,
         };
         let l = &self.lines[i];
-        let pou = self.pous.get(l.pou as usize)?;
+        let pou = self.model.pous.get(l.pou as usize)?;
         let file = self
             .files
             .get(l.file as usize)
@@ -168,194 +110,31 @@ impl Image {
     }
 }
 
-#[derive(Clone, Debug, PartialEq)]
-pub enum TypeDesc {
-    Scalar(ElemType),
-    String {
-        wide: bool,
-        cap: u32,
-    },
-    Enum {
-        name: String,
-        base: ElemType,
-        values: Vec<(String, i128)>,
-    },
-    /// `stride` is the size of one element; dims are (low, high) bounds.
-    Array {
-        elem: TypeRef,
-        dims: Vec<(i64, i64)>,
-        stride: u32,
-    },
-    Struct {
-        name: Option<String>,
-        fields: Vec<FieldDesc>,
-    },
-    /// An instance of a function block or program: the POU's variables.
-    Instance {
-        pou: u32,
-    },
-    /// An integer type restricted to `lo..=hi` (stored as `base`).
-    Subrange {
-        base: ElemType,
-        lo: i128,
-        hi: i128,
-    },
+/// A POU's model and code seen together ([`Image::pou`]).
+#[derive(Clone, Copy, Debug)]
+pub struct PouView<'a> {
+    pub name: &'a str,
+    pub kind: PouKind,
+    pub entry: u32,
+    pub instance_size: u32,
+    pub frame_size: u32,
+    pub frame_init_at: u32,
+    pub frame_template: (u32, u32),
+    pub instance_type: TypeRef,
+    pub vars: &'a [VarDesc],
 }
 
-coded_enum! {
-    /// The kind of a [`TypeDesc`] (`STC_TK_*` in C).
-    TypeDescKind {
-        Scalar = 0,
-        String = 1,
-        Enum = 2,
-        Array = 3,
-        Struct = 4,
-        Instance = 5,
-        Subrange = 6,
-    }
-}
-
-impl TypeDesc {
-    pub fn kind(&self) -> TypeDescKind {
-        match self {
-            TypeDesc::Scalar(_) => TypeDescKind::Scalar,
-            TypeDesc::String { .. } => TypeDescKind::String,
-            TypeDesc::Enum { .. } => TypeDescKind::Enum,
-            TypeDesc::Array { .. } => TypeDescKind::Array,
-            TypeDesc::Struct { .. } => TypeDescKind::Struct,
-            TypeDesc::Instance { .. } => TypeDescKind::Instance,
-            TypeDesc::Subrange { .. } => TypeDescKind::Subrange,
-        }
-    }
-}
-
-#[derive(Clone, Debug, PartialEq)]
-pub struct FieldDesc {
-    pub name: String,
-    pub ty: TypeRef,
-    pub offset: u32,
-}
-
-coded_enum! {
-    /// The section a variable is declared in (`STC_VK_*` in C).
-    VarKind {
-        Input = 0,
-        Output = 1,
-        InOut = 2,
-        Var = 3,
-        Temp = 4,
-        External = 5,
-        Global = 6,
-        Result = 7,
-        Hidden = 8,
-    }
-}
-
-#[derive(Clone, Debug, PartialEq)]
-pub struct VarDesc {
-    pub name: String,
-    pub ty: TypeRef,
-    pub kind: VarKind,
-    /// Offset in the instance (function blocks, programs) or the frame.
-    pub offset: u32,
-    /// Whether the variable lives in the frame (functions, VAR_TEMP).
-    pub in_frame: bool,
-    /// A reference (VAR_IN_OUT, VAR_EXTERNAL, a located variable): the slot
-    /// holds an address.
-    pub is_ref: bool,
-    /// The direct address of a located variable (`AT %IX0.0`).
-    pub location: Option<DirectAddress>,
-    /// Declared CONSTANT: not to be changed from outside.
-    pub constant: bool,
-}
-
+/// A POU's code and frame (its variables are in the model).
 #[derive(Clone, Debug, PartialEq)]
 pub struct PouCode {
-    pub name: String,
-    pub kind: PouKind,
     /// First instruction of the body.
     pub entry: u32,
-    /// Size of the instance (function blocks and programs).
-    pub instance_size: u32,
     /// Size of one call frame, including temporaries and argument areas.
     pub frame_size: u32,
     /// The frame's initial bytes from `frame_init_at` on: a range of the
     /// constant pool copied at each call (VAR_TEMP, a function's locals).
     pub frame_init_at: u32,
     pub frame_template: (u32, u32),
-    pub vars: Vec<VarDesc>,
-    /// The type describing an instance of this POU.
-    pub instance_type: TypeRef,
-}
-
-coded_enum! {
-    PouKind {
-        Function = 0,
-        FunctionBlock = 1,
-        Program = 2,
-    }
-}
-
-#[derive(Clone, Debug, PartialEq)]
-pub struct GlobalDesc {
-    pub name: String,
-    pub ty: TypeRef,
-    pub offset: u32,
-    /// The configuration the global belongs to (`None`: a top-level list).
-    pub config: Option<u32>,
-    pub location: Option<DirectAddress>,
-    pub constant: bool,
-}
-
-#[derive(Clone, Debug, PartialEq)]
-pub struct ConfigDesc {
-    pub name: String,
-    pub resources: Vec<ResourceDesc>,
-}
-
-#[derive(Clone, Debug, PartialEq)]
-pub struct ResourceDesc {
-    pub name: Option<String>,
-    pub tasks: Vec<TaskDesc>,
-    pub programs: Vec<ProgramInst>,
-}
-
-#[derive(Clone, Debug, PartialEq)]
-pub struct TaskDesc {
-    pub name: String,
-    pub interval_ns: Option<i64>,
-    pub priority: u32,
-    /// The BOOL that triggers an event task.
-    pub single: Option<Source>,
-}
-
-/// A program instance: where its data is and what is connected to it.
-#[derive(Clone, Debug, PartialEq)]
-pub struct ProgramInst {
-    pub name: String,
-    pub pou: u32,
-    /// Address of the instance in the data area.
-    pub offset: u32,
-    /// Index of its task in its resource.
-    pub task: Option<u32>,
-    /// Inputs copied in before each run: (offset in the instance, type, source).
-    pub inputs: Vec<(u32, TypeRef, Source)>,
-    /// Outputs copied out after each run: (offset in the instance, type, sink).
-    pub outputs: Vec<(u32, TypeRef, Source)>,
-}
-
-/// A value in the data area (or a constant in the pool) with its type.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Source {
-    /// An absolute address (a global, a process image slot, a constant).
-    Addr { offset: u32, ty: TypeRef },
-}
-
-#[derive(Clone, Debug, PartialEq)]
-pub struct IoSlot {
-    pub address: DirectAddress,
-    pub offset: u32,
-    pub ty: TypeRef,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -17,6 +17,9 @@ use crate::num::Num;
 const MAX_MEMORY: u64 = stc_ir::layout::MAX_SIZE;
 
 pub fn verify(img: &Image) -> Result<(), String> {
+    if img.pous.len() != img.model.pous.len() {
+        return Err("the POUs' code and model do not match".into());
+    }
     if img.init.len() as u64 != img.data_size as u64 {
         return Err("the initial data does not match the data size".into());
     }
@@ -25,7 +28,7 @@ pub fn verify(img: &Image) -> Result<(), String> {
     }
     let code_len = img.code.len() as u32;
     // Types.
-    for t in &img.types {
+    for t in &img.model.types {
         match t {
             TypeDesc::Array { elem, .. } => type_ok(img, *elem)?,
             TypeDesc::Struct { fields, .. } => {
@@ -48,7 +51,7 @@ pub fn verify(img: &Image) -> Result<(), String> {
     }
     // POUs and the code ranges they own.
     let mut ranges: Vec<(u32, usize)> = Vec::new();
-    for (i, p) in img.pous.iter().enumerate() {
+    for (i, p) in (0..img.pous.len()).filter_map(|i| Some((i, img.pou(i)?))) {
         if p.entry >= code_len {
             return Err(format!("POU `{}` starts outside the code", p.name));
         }
@@ -62,7 +65,7 @@ pub fn verify(img: &Image) -> Result<(), String> {
             return Err(format!("function `{}` has an instance", p.name));
         }
         type_ok(img, p.instance_type)?;
-        for v in &p.vars {
+        for v in p.vars {
             type_ok(img, v.ty)?;
         }
         ranges.push((p.entry, i));
@@ -81,7 +84,7 @@ pub fn verify(img: &Image) -> Result<(), String> {
     let mut edges: Vec<Vec<usize>> = vec![Vec::new(); img.pous.len()];
     for (k, &(start, pi)) in ranges.iter().enumerate() {
         let end = ranges.get(k + 1).map_or(code_len, |r| r.0);
-        let pou = &img.pous[pi];
+        let pou = &img.pou(pi).ok_or("a POU without code")?;
         for pc in start..end {
             let ins = &img.code[pc as usize];
             instr_ok(img, pou, ins, start, end, &mut edges[pi]).map_err(|e| {
@@ -109,7 +112,7 @@ pub fn verify(img: &Image) -> Result<(), String> {
                         state[w] = 1;
                         stack.push((w, 0));
                     }
-                    1 => return Err(format!("POU `{}` is recursive", img.pous[w].name)),
+                    1 => return Err(format!("POU `{}` is recursive", img.model.pous[w].name)),
                     _ => {}
                 }
             } else {
@@ -143,22 +146,22 @@ pub fn verify(img: &Image) -> Result<(), String> {
     {
         return Err(format!(
             "calls from `{}` nest deeper than {} levels",
-            img.pous[p].name,
+            img.model.pous[p].name,
             crate::interp::MAX_CALL_DEPTH
         ));
     }
     // Program instances, globals, the process image.
     let data = img.data_size as u64;
     let abs_end = data + img.consts.len() as u64;
-    let programs = img.programs.iter().chain(
-        img.configs
+    let programs = img.model.programs.iter().chain(
+        img.model
+            .configs
             .iter()
             .flat_map(|c| c.resources.iter().flat_map(|r| r.programs.iter())),
     );
     for p in programs {
         let pou = img
-            .pous
-            .get(p.pou as usize)
+            .pou(p.pou as usize)
             .ok_or("a program instance names an unknown POU")?;
         if pou.kind != PouKind::Program {
             return Err(format!("program instance `{}` is not of a PROGRAM", p.name));
@@ -182,7 +185,7 @@ pub fn verify(img: &Image) -> Result<(), String> {
             }
         }
     }
-    for c in &img.configs {
+    for c in &img.model.configs {
         for r in &c.resources {
             for t in &r.tasks {
                 if let Some(Source::Addr { offset, ty }) = &t.single {
@@ -205,13 +208,13 @@ pub fn verify(img: &Image) -> Result<(), String> {
             }
         }
     }
-    for g in &img.globals {
+    for g in &img.model.globals {
         type_ok(img, g.ty)?;
         if g.offset as u64 + value_size(img, g.ty)? > data {
             return Err(format!("global `{}` lies outside the data area", g.name));
         }
     }
-    for s in &img.io {
+    for s in &img.model.io {
         type_ok(img, s.ty)?;
         if s.offset as u64 + value_size(img, s.ty)? > data {
             return Err(format!(
@@ -235,7 +238,7 @@ pub fn verify(img: &Image) -> Result<(), String> {
 }
 
 fn type_ok(img: &Image, t: TypeRef) -> Result<(), String> {
-    if (t as usize) < img.types.len() {
+    if (t as usize) < img.model.types.len() {
         Ok(())
     } else {
         Err(format!("type index {t} is out of range"))
@@ -251,7 +254,7 @@ fn value_size(img: &Image, t: TypeRef) -> Result<u64, String> {
 }
 
 /// An operand of `size` bytes in the context of POU `pou`.
-fn op_ok(img: &Image, pou: &PouCode, op: Op, size: u64) -> Result<(), String> {
+fn op_ok(img: &Image, pou: &PouView, op: Op, size: u64) -> Result<(), String> {
     let end = op.offset() as u64 + size;
     let ok = match op.mode() {
         MODE_FRAME => end <= pou.frame_size as u64,
@@ -270,7 +273,7 @@ fn op_ok(img: &Image, pou: &PouCode, op: Op, size: u64) -> Result<(), String> {
 
 fn instr_ok(
     img: &Image,
-    pou: &PouCode,
+    pou: &PouView,
     ins: &Instr,
     start: u32,
     end: u32,
@@ -425,14 +428,11 @@ fn instr_ok(
             op_ok(img, pou, p, 4)?;
         }
         Instr::CallFn { pou: callee, frame } => {
-            let c = img
-                .pous
-                .get(callee as usize)
-                .ok_or("call of an unknown POU")?;
+            let c = img.pou(callee as usize).ok_or("call of an unknown POU")?;
             if c.kind != PouKind::Function {
                 return Err(format!("`{}` is not a function", c.name));
             }
-            frame_ok(pou, c, frame)?;
+            frame_ok(pou, &c, frame)?;
             edges.push(callee as usize);
         }
         Instr::CallFb {
@@ -445,17 +445,14 @@ fn instr_ok(
             inst,
             frame,
         } => {
-            let c = img
-                .pous
-                .get(callee as usize)
-                .ok_or("call of an unknown POU")?;
+            let c = img.pou(callee as usize).ok_or("call of an unknown POU")?;
             if c.kind == PouKind::Function {
                 return Err(format!("`{}` is a function, not a function block", c.name));
             }
             if matches!(ins, Instr::CallFb { .. }) {
                 op_ok(img, pou, inst, c.instance_size as u64)?;
             }
-            frame_ok(pou, c, frame)?;
+            frame_ok(pou, &c, frame)?;
             edges.push(callee as usize);
         }
         Instr::Std { call } => {
@@ -510,7 +507,7 @@ fn elem_width(ins: &Instr) -> u64 {
 }
 
 /// A callee's frame must lie inside the caller's.
-fn frame_ok(caller: &PouCode, callee: &PouCode, frame: u32) -> Result<(), String> {
+fn frame_ok(caller: &PouView, callee: &PouView, frame: u32) -> Result<(), String> {
     if frame as u64 + callee.frame_size as u64 <= caller.frame_size as u64 {
         Ok(())
     } else {

@@ -96,14 +96,13 @@ impl Gen<'_> {
                 }
             }
             TypeKind::Fb(p) | TypeKind::Program(p) => {
-                let p = p.0 as usize;
                 let c = ctx.unwrap_or("0U");
                 self.line(format!("{}(&{lv}, {c});", names::init_name(m, p)));
                 if let Some(InitValue::Struct(list)) = init {
                     let pou = &m.pous[p];
                     for (n, v) in list {
                         if let Some((i, var)) =
-                            pou.vars.iter().enumerate().find(|(_, x)| x.name == *n)
+                            pou.vars.iter_enumerated().find(|(_, x)| x.name == *n)
                         {
                             let vlv = format!("{lv}.{}", names::var_name(m, i, var));
                             self.init_value(&vlv, var.ty, Some(v), ctx, depth + 1)?;
@@ -119,7 +118,7 @@ impl Gen<'_> {
     /// The initialiser of an FB or program instance: every variable to its
     /// initial value, nested instances, located variables bound to their
     /// process-image slots and VAR_EXTERNALs to the globals of `ctx`.
-    pub(super) fn init_fn(&mut self, p: usize) -> Result<(), Error> {
+    pub(super) fn init_fn(&mut self, p: PouId) -> Result<(), Error> {
         let m = self.m;
         let pou = &m.pous[p];
         self.f = Func {
@@ -129,7 +128,7 @@ impl Gen<'_> {
             ..Func::default()
         };
         self.line("(void)ctx;".into());
-        for (i, v) in pou.vars.iter().enumerate() {
+        for (i, v) in pou.vars.iter_enumerated() {
             if v.storage == Storage::Frame {
                 continue;
             }

@@ -14,7 +14,8 @@ use rustc_hash::{FxHashMap, FxHashSet};
 use stc_ir::{
     Expr, ExprKind, FaultKind, Module, Output, Place, Proj, Root, Stmt, StmtKind, Storage,
 };
-use stc_sema::{DataRef, InitValue, PouId, Section, TypeId, TypeKind, VarId};
+use stc_sema::idx::{IdVec, Idx};
+use stc_sema::{DataRef, GlobalId, InitValue, PouId, Section, TypeId, TypeKind, VarId};
 use stc_syntax::ast::PouKind;
 use stc_syntax::literal::{AddrSize, DirectAddress};
 use stc_syntax::token::ElemType;
@@ -33,7 +34,7 @@ pub struct Program {
 /// What the statement generator knows about the function being written.
 #[derive(Default)]
 struct Func {
-    pou: usize,
+    pou: PouId,
     function: bool,
     /// Declarations at the top of the function.
     decls: Vec<String>,
@@ -50,13 +51,6 @@ struct Func {
     next_label: u32,
 }
 
-/// A key of the descriptor table of types.
-#[derive(Clone, Copy, PartialEq, Eq, Hash)]
-enum MetaKey {
-    Type(TypeId),
-    Pou(usize),
-}
-
 /// Finds the file, line and column of a span.
 pub type Locate<'a> = &'a dyn Fn(stc_diagnostics::Span) -> Option<(String, u32, u32)>;
 
@@ -67,7 +61,7 @@ struct Gen<'a> {
     typedefs: String,
     forward: String,
     defined: FxHashSet<TypeId>,
-    defined_pous: FxHashSet<usize>,
+    defined_pous: FxHashSet<PouId>,
     array_names: FxHashSet<String>,
     /// The `static const` tables of CONSTANT arrays (see `const_table`).
     const_tables: FxHashSet<String>,
@@ -82,18 +76,19 @@ struct Gen<'a> {
     /// Per POU: whether running it may raise a fault (`stc_ir::faults`).
     may_fault: Vec<bool>,
     sites: Vec<(String, String, u32, u32)>,
-    site_map: FxHashMap<(usize, u32, u32), u32>,
-    meta_types: Vec<String>,
-    meta_map: FxHashMap<MetaKey, u32>,
+    site_map: FxHashMap<(PouId, u32, u32), u32>,
+    /// The program model (`stc_ir::model`): the numbering of the
+    /// descriptor tables, the process image slots.
+    model: stc_ir::model::Data,
     meta_extra: String,
     f: Func,
     /// The (configuration, resource) contexts, for binding VAR_EXTERNAL.
     contexts: Vec<(usize, usize)>,
     /// The POUs the program uses (others, such as unused standard FBs, are
     /// not generated).
-    used: Vec<bool>,
+    used: IdVec<PouId, bool>,
     /// The POUs whose body is generated (`called_pous`).
-    called: Vec<bool>,
+    called: IdVec<PouId, bool>,
     /// The type of each process-image slot: of the first variable located
     /// there, else of its address.
     io_types: FxHashMap<DirectAddress, TypeId>,
@@ -105,6 +100,20 @@ struct Gen<'a> {
 
 /// Generates the program of a module.
 pub fn program(m: &Module, locate: Locate<'_>) -> Result<Program, Error> {
+    let layouts = stc_ir::layout::Layouts::compute(m).map_err(Error::Diagnostics)?;
+    let model = stc_ir::model::build(m, &layouts).map_err(|e| match e {
+        stc_ir::model::ModelError::Diagnostics(d) => Error::Diagnostics(d),
+        stc_ir::model::ModelError::Internal(what) => {
+            Error::Unsupported(format!("internal error: {what}"))
+        }
+    })?;
+    // The type of each process-image slot, as the model decided it.
+    let mut io_types = FxHashMap::default();
+    for slot in &model.model.io {
+        if let Some(Some(t)) = model.type_ids.get(slot.ty as usize) {
+            io_types.insert(slot.address.clone(), *t);
+        }
+    }
     let mut contexts = Vec::new();
     for (c, conf) in m.configs.iter().enumerate() {
         for r in 0..conf.resources.len() {
@@ -129,14 +138,13 @@ pub fn program(m: &Module, locate: Locate<'_>) -> Result<Program, Error> {
         may_fault: stc_ir::faults::may_fault(m),
         sites: Vec::new(),
         site_map: FxHashMap::default(),
-        meta_types: Vec::new(),
-        meta_map: FxHashMap::default(),
+        model,
         meta_extra: String::new(),
         f: Func::default(),
         contexts,
         used: used_pous(m),
-        called: Vec::new(),
-        io_types: io_types(m),
+        called: IdVec::new(),
+        io_types,
         image_header: String::new(),
         private_cells: FxHashSet::default(),
     };
@@ -158,7 +166,7 @@ impl<'a> Gen<'a> {
 
     fn program(&mut self) -> Result<Program, Error> {
         let m = self.m;
-        let used: Vec<usize> = (0..m.pous.len()).filter(|&p| self.used[p]).collect();
+        let used: Vec<PouId> = m.pous.ids().filter(|&p| self.used[p]).collect();
         for &p in &used {
             self.define_pou(p);
         }
@@ -272,13 +280,13 @@ impl<'a> Gen<'a> {
                 let _ = writeln!(self.forward, "typedef struct {name}_s {name};");
                 let _ = writeln!(self.typedefs, "struct {name}_s {{\n{body}}};");
             }
-            TypeKind::Fb(p) | TypeKind::Program(p) => self.define_pou(p.0 as usize),
+            TypeKind::Fb(p) | TypeKind::Program(p) => self.define_pou(p),
             _ => {}
         }
     }
 
     /// The instance struct of an FB or program, or the frame struct of a function.
-    fn define_pou(&mut self, p: usize) {
+    fn define_pou(&mut self, p: PouId) {
         if !self.defined_pous.insert(p) {
             return;
         }
@@ -292,7 +300,7 @@ impl<'a> Gen<'a> {
         };
         let _ = writeln!(self.forward, "typedef struct {name}_s {name};");
         let mut body = String::new();
-        for (i, v) in pou.vars.iter().enumerate() {
+        for (i, v) in pou.vars.iter_enumerated() {
             let in_struct = function || v.storage != Storage::Frame;
             if !in_struct {
                 continue;
@@ -325,7 +333,7 @@ impl<'a> Gen<'a> {
     fn define_pointee(&mut self, t: TypeId) {
         match self.m.types.kind(t) {
             TypeKind::Fb(p) | TypeKind::Program(p) => {
-                let p = p.0 as usize;
+                let p = *p;
                 if !self.defined_pous.contains(&p) {
                     // A forward declaration is enough; the definition comes
                     // when the POU is defined.
@@ -387,7 +395,7 @@ impl<'a> Gen<'a> {
     /// type exists where it runs (a program run on its own whose globals
     /// are in a configuration): a static of its own, set to the type's
     /// default by the POU's init function, as the VM gives it.
-    fn private_external(&mut self, p: usize, v: usize, t: TypeId) -> Result<String, Error> {
+    fn private_external(&mut self, p: PouId, v: VarId, t: TypeId) -> Result<String, Error> {
         let cell = format!("ext_{p}_{v}");
         self.define(t);
         if self.private_cells.insert(cell.clone()) {
@@ -418,7 +426,7 @@ impl<'a> Gen<'a> {
 
     // ----- bodies -----------------------------------------------------------
 
-    fn prototype(&mut self, p: usize) {
+    fn prototype(&mut self, p: PouId) {
         let m = self.m;
         if self.called[p] {
             let sig = self.signature(p);
@@ -434,7 +442,7 @@ impl<'a> Gen<'a> {
         }
     }
 
-    fn signature(&self, p: usize) -> String {
+    fn signature(&self, p: PouId) -> String {
         let m = self.m;
         if m.pous[p].kind == PouKind::Function {
             format!(
@@ -451,7 +459,7 @@ impl<'a> Gen<'a> {
         }
     }
 
-    fn pou_body(&mut self, p: usize) -> Result<(), Error> {
+    fn pou_body(&mut self, p: PouId) -> Result<(), Error> {
         let m = self.m;
         let pou = &m.pous[p];
         let function = pou.kind == PouKind::Function;
@@ -468,7 +476,7 @@ impl<'a> Gen<'a> {
         // A function's locals, outputs and result start at their initial
         // values at each call (its inputs and in-outs are set by the caller);
         // an FB's or program's VAR_TEMP likewise.
-        for (i, v) in pou.vars.iter().enumerate() {
+        for (i, v) in pou.vars.iter_enumerated() {
             if !in_frame(function, v) {
                 continue;
             }
@@ -509,8 +517,8 @@ impl<'a> Gen<'a> {
     /// The check after a call of POU `p`: the full fault check when it may
     /// fault (directly, or through its own calls), else only the
     /// watchdog's (which costs nothing without STC_WATCHDOG).
-    fn call_check(&mut self, p: usize) {
-        if self.may_fault.get(p).copied().unwrap_or(true) {
+    fn call_check(&mut self, p: PouId) {
+        if self.may_fault.get(p.index()).copied().unwrap_or(true) {
             self.fault_return();
         } else {
             self.line("if (stc_watchdog_tripped() != 0U) { return; }".into());
@@ -717,7 +725,7 @@ impl<'a> Gen<'a> {
         let m = self.m;
         let pou = &m.pous[self.f.pou];
         let var = pou.var(v);
-        let name = names::var_name(m, v.0 as usize, var);
+        let name = names::var_name(m, v, var);
         let base = if self.f.function {
             format!("f->{name}")
         } else if var.storage == Storage::Frame {
@@ -782,7 +790,7 @@ impl<'a> Gen<'a> {
     /// Whether variable `v` of POU `p` is read from a `static const` table
     /// ([`Gen::const_table`]): a CONSTANT array of elementary values (not
     /// strings) held directly, every initial value given a scalar.
-    fn is_const_table(&self, p: usize, v: VarId) -> bool {
+    fn is_const_table(&self, p: PouId, v: VarId) -> bool {
         let m = self.m;
         let var = m.pous[p].var(v);
         if !var.constant || var.storage == Storage::Ref {
@@ -825,7 +833,7 @@ impl<'a> Gen<'a> {
     /// and a body names its variables there, except VAR_TEMPs of an FB or
     /// program (locals of the C function) and CONSTANT arrays read from
     /// their tables. Decided on the IR (`stc_ir::visit::used_vars`).
-    fn body_uses_param(&self, p: usize) -> bool {
+    fn body_uses_param(&self, p: PouId) -> bool {
         let pou = &self.m.pous[p];
         let function = pou.kind == PouKind::Function;
         let used = stc_ir::visit::used_vars(&pou.body, pou.vars.len());
@@ -840,7 +848,7 @@ impl<'a> Gen<'a> {
 
     /// Whether the initialiser of FB or program `p` refers to its instance:
     /// when it has a variable of the instance to set or bind.
-    fn init_uses_self(&self, p: usize) -> bool {
+    fn init_uses_self(&self, p: PouId) -> bool {
         self.m.pous[p].vars.iter().any(|v| match v.storage {
             Storage::Frame => false,
             Storage::Ref => true,
@@ -861,7 +869,7 @@ impl<'a> Gen<'a> {
                 },
                 m.pous[self.f.pou].var(*v).ty,
             ),
-            Root::Global(g) => (global_lvalue(m, g.0 as usize), m.globals[g.0 as usize].ty),
+            Root::Global(g) => (global_lvalue(m, *g), m.globals[*g].ty),
             Root::Direct(a) => (self.io_access(a, m.addr_type(a))?, m.addr_type(a)),
         };
         let mut deferred = defer;
@@ -882,8 +890,8 @@ impl<'a> Gen<'a> {
                     ty = f.ty;
                 }
                 Proj::FbVar(fb, v) => {
-                    let var = m.pous[fb.0 as usize].var(*v);
-                    let name = names::var_name(m, v.0 as usize, var);
+                    let var = m.pous[*fb].var(*v);
+                    let name = names::var_name(m, *v, var);
                     lv = if var.storage == Storage::Ref {
                         format!("(*{lv}.{name})")
                     } else {
@@ -1008,7 +1016,7 @@ impl<'a> Gen<'a> {
         let m = self.m;
         let mut ty = match &p.root {
             Root::Var(v) => m.pous[self.f.pou].var(*v).ty,
-            Root::Global(g) => m.globals[g.0 as usize].ty,
+            Root::Global(g) => m.globals[*g].ty,
             Root::Direct(a) => m.addr_type(a),
         };
         for proj in &p.proj {
@@ -1017,7 +1025,7 @@ impl<'a> Gen<'a> {
                     TypeKind::Struct { fields } => fields.get(*i as usize)?.ty,
                     _ => return None,
                 },
-                Proj::FbVar(fb, v) => m.pous[fb.0 as usize].var(*v).ty,
+                Proj::FbVar(fb, v) => m.pous[*fb].var(*v).ty,
                 Proj::Index(_) => match m.types.kind(ty) {
                     TypeKind::Array { elem, .. } => *elem,
                     _ => return None,
@@ -1263,15 +1271,15 @@ impl<'a> Gen<'a> {
         ty: TypeId,
     ) -> Result<String, Error> {
         let m = self.m;
-        let p = func.0 as usize;
+        let p = func;
         let callee = &m.pous[p];
         let fr = self.new_temp(names::frame_type_name(m, p));
         // Every input in declaration order: given, or its initial value.
-        for (i, v) in callee.vars.iter().enumerate() {
+        for (i, v) in callee.vars.iter_enumerated() {
             if v.section != Section::Input {
                 continue;
             }
-            let var = VarId(i as u32);
+            let var = i;
             let dst = format!("{fr}.{}", names::var_name(m, i, v));
             match inputs.iter().find(|(p, _)| *p == var) {
                 Some((_, e)) => {
@@ -1284,16 +1292,13 @@ impl<'a> Gen<'a> {
         for (v, pl) in inouts {
             let var = callee.var(*v);
             let lv = self.place(pl, None)?;
-            self.line(format!(
-                "{fr}.{} = &{lv};",
-                names::var_name(m, v.0 as usize, var)
-            ));
+            self.line(format!("{fr}.{} = &{lv};", names::var_name(m, *v, var)));
         }
         self.line(format!("{}(&{fr});", names::body_name(m, p)));
         self.call_check(p);
         for o in outputs {
             let var = callee.var(o.var);
-            let src = format!("{fr}.{}", names::var_name(m, o.var.0 as usize, var));
+            let src = format!("{fr}.{}", names::var_name(m, o.var, var));
             let src = if self.is_string(var.ty).is_some() {
                 format!("{src}.s")
             } else {
@@ -1304,7 +1309,7 @@ impl<'a> Gen<'a> {
         let res = callee
             .result
             .map(|r| (r, callee.var(r)))
-            .map(|(r, v)| format!("{fr}.{}", names::var_name(m, r.0 as usize, v)));
+            .map(|(r, v)| format!("{fr}.{}", names::var_name(m, r, v)));
         Ok(match res {
             Some(r) if self.is_string(ty).is_some() => format!("{r}.s"),
             Some(r) => r,
@@ -1348,7 +1353,7 @@ impl<'a> Gen<'a> {
         outputs: &[Output],
     ) -> Result<(), Error> {
         let m = self.m;
-        let p = fb.0 as usize;
+        let p = fb;
         let fbp = &m.pous[p];
         let lv = self.place(instance, None)?;
         let ptr = self.new_temp(format!("{} *", names::pou_type_name(m, p)));
@@ -1356,7 +1361,7 @@ impl<'a> Gen<'a> {
         for (v, e) in inputs {
             let var = fbp.var(*v);
             let val = self.expr(e)?;
-            let dst = format!("{ptr}->{}", names::var_name(m, v.0 as usize, var));
+            let dst = format!("{ptr}->{}", names::var_name(m, *v, var));
             self.assign_value(&dst, var.ty, &val)?;
         }
         for (v, pl) in inouts {
@@ -1364,14 +1369,14 @@ impl<'a> Gen<'a> {
             let target = self.place(pl, None)?;
             self.line(format!(
                 "{ptr}->{} = &{target};",
-                names::var_name(m, v.0 as usize, var)
+                names::var_name(m, *v, var)
             ));
         }
         self.line(format!("{}({ptr});", names::body_name(m, p)));
         self.call_check(p);
         for o in outputs {
             let var = fbp.var(o.var);
-            let name = names::var_name(m, o.var.0 as usize, var);
+            let name = names::var_name(m, o.var, var);
             let src = if var.storage == Storage::Ref {
                 format!("(*{ptr}->{name})")
             } else {
@@ -1437,19 +1442,6 @@ fn in_frame(function: bool, v: &stc_ir::Var) -> bool {
     }
 }
 
-fn var_kind(s: Section) -> &'static str {
-    match s {
-        Section::Input => "STC_VK_INPUT",
-        Section::Output => "STC_VK_OUTPUT",
-        Section::InOut => "STC_VK_INOUT",
-        Section::Var => "STC_VK_VAR",
-        Section::Temp => "STC_VK_TEMP",
-        Section::External => "STC_VK_EXTERNAL",
-        Section::Global => "STC_VK_GLOBAL",
-        Section::Result => "STC_VK_RESULT",
-    }
-}
-
 /// The number of elements of an array (at least 1 for C).
 fn array_count(dims: &[(i128, i128)]) -> u64 {
     dims.iter()
@@ -1499,26 +1491,8 @@ fn c_bytes(b: &[u8]) -> String {
     out
 }
 
-/// The type of each process-image slot: the first located variable's.
-fn io_types(m: &Module) -> FxHashMap<DirectAddress, TypeId> {
-    let mut out = FxHashMap::default();
-    for g in &m.globals {
-        if let Some(a) = g.location.as_ref().filter(|a| !a.is_incomplete()) {
-            out.entry(a.clone()).or_insert(g.ty);
-        }
-    }
-    for p in &m.pous {
-        for v in &p.vars {
-            if let Some(a) = v.location.as_ref().filter(|a| !a.is_incomplete()) {
-                out.entry(a.clone()).or_insert(v.ty);
-            }
-        }
-    }
-    out
-}
-
 /// The C object of a global (a located global is its process-image slot).
-fn global_lvalue(m: &Module, g: usize) -> String {
+fn global_lvalue(m: &Module, g: GlobalId) -> String {
     match m.globals[g]
         .location
         .as_ref()
@@ -1533,13 +1507,14 @@ fn global_lvalue(m: &Module, g: usize) -> String {
 /// POU a used POU calls. A function block used only as the type of an
 /// instance that is never called needs its struct and init function, not
 /// its body.
-fn called_pous(m: &Module, used: &[bool]) -> Vec<bool> {
-    let mut called: Vec<bool> = m.pous.iter().map(|p| p.kind == PouKind::Program).collect();
-    for (p, pou) in m.pous.iter().enumerate() {
+fn called_pous(m: &Module, used: &IdVec<PouId, bool>) -> IdVec<PouId, bool> {
+    let mut called: IdVec<PouId, bool> =
+        m.pous.iter().map(|p| p.kind == PouKind::Program).collect();
+    for (p, pou) in m.pous.iter_enumerated() {
         if used[p] {
             stc_ir::visit::calls(&pou.body, &mut |c| {
-                if let Some(x) = called.get_mut(c.0 as usize) {
-                    *x = true;
+                if c.index() < called.len() {
+                    called[c] = true;
                 }
             });
         }
@@ -1549,18 +1524,20 @@ fn called_pous(m: &Module, used: &[bool]) -> Vec<bool> {
 
 /// The POUs a program uses: every PROGRAM, and what their variables,
 /// the globals and their bodies need (instances and calls), transitively.
-fn used_pous(m: &Module) -> Vec<bool> {
-    let mut used = vec![false; m.pous.len()];
-    let mut work: Vec<usize> = (0..m.pous.len())
+fn used_pous(m: &Module) -> IdVec<PouId, bool> {
+    let mut used: IdVec<PouId, bool> = m.pous.iter().map(|_| false).collect();
+    let mut work: Vec<PouId> = m
+        .pous
+        .ids()
         .filter(|&p| m.pous[p].kind == PouKind::Program)
         .collect();
     let mut seen_types: FxHashSet<TypeId> = FxHashSet::default();
-    fn type_pous(m: &Module, t: TypeId, out: &mut Vec<usize>, seen: &mut FxHashSet<TypeId>) {
+    fn type_pous(m: &Module, t: TypeId, out: &mut Vec<PouId>, seen: &mut FxHashSet<TypeId>) {
         if !seen.insert(t) {
             return;
         }
         match m.types.kind(t) {
-            TypeKind::Fb(p) | TypeKind::Program(p) => out.push(p.0 as usize),
+            TypeKind::Fb(p) | TypeKind::Program(p) => out.push(*p),
             TypeKind::Array { elem, .. } => type_pous(m, *elem, out, seen),
             TypeKind::Struct { fields } => {
                 for f in fields {
@@ -1582,7 +1559,7 @@ fn used_pous(m: &Module) -> Vec<bool> {
         for v in &pou.vars {
             type_pous(m, v.ty, &mut work, &mut seen_types);
         }
-        stc_ir::visit::calls(&pou.body, &mut |c| work.push(c.0 as usize));
+        stc_ir::visit::calls(&pou.body, &mut |c| work.push(c));
     }
     used
 }

@@ -5,6 +5,7 @@
 //! real-time harness and `stc run --backend c` see the program.
 
 use super::*;
+use stc_ir::model::{PouKind as ModelPouKind, TypeDesc};
 
 impl Gen<'_> {
     // ----- data and descriptor tables ---------------------------------------
@@ -13,48 +14,16 @@ impl Gen<'_> {
     /// tables and `stc_init_all`.
     pub(super) fn data_and_tables(&mut self) -> Result<String, Error> {
         let m = self.m;
-        // Process-image slots: one per direct address used.
-        let mut io: Vec<DirectAddress> = Vec::new();
-        let add_io = |a: &DirectAddress, io: &mut Vec<DirectAddress>| {
-            if !a.is_incomplete() && !io.contains(a) {
-                io.push(a.clone());
-            }
-        };
-        for g in &m.globals {
-            if let Some(a) = &g.location {
-                add_io(a, &mut io);
-            }
-        }
-        for p in &m.pous {
-            for v in &p.vars {
-                if let Some(a) = &v.location {
-                    add_io(a, &mut io);
-                }
-            }
-            stc_ir::visit::places(&p.body, &mut |pl: &Place| {
-                if let Root::Direct(a) = &pl.root {
-                    add_io(a, &mut io);
-                }
-            });
-        }
-        for c in &m.configs {
-            for r in &c.resources {
-                for t in &r.tasks {
-                    if let Some(DataRef::Direct(a)) = &t.single {
-                        add_io(a, &mut io);
-                    }
-                }
-                for pi in &r.programs {
-                    for (_, d) in pi.inputs.iter().chain(pi.outputs.iter()) {
-                        if let DataRef::Direct(a) = d {
-                            add_io(a, &mut io);
-                        }
-                    }
-                }
-            }
-        }
+        // Process-image slots: the model's, one per direct address used.
+        let io: Vec<DirectAddress> = self
+            .model
+            .model
+            .io
+            .iter()
+            .map(|s| s.address.clone())
+            .collect();
         self.f = Func {
-            pou: 0,
+            pou: PouId(0),
             depth: 1,
             ..Func::default()
         };
@@ -69,7 +38,7 @@ impl Gen<'_> {
                 names::io_name(a)
             );
         }
-        for (gi, g) in m.globals.iter().enumerate() {
+        for (gi, g) in m.globals.iter_enumerated() {
             self.define(g.ty);
             if g.location.as_ref().is_some_and(|a| !a.is_incomplete()) {
                 // A located global is its process-image slot.
@@ -84,7 +53,7 @@ impl Gen<'_> {
         }
         // Program instances: those of the configurations, then one
         // standalone instance per PROGRAM type.
-        let mut instances: Vec<(String, usize, String)> = Vec::new();
+        let mut instances: Vec<(String, PouId, String)> = Vec::new();
         for (ci, c) in m.configs.iter().enumerate() {
             for (ri, r) in c.resources.iter().enumerate() {
                 let ctx = self
@@ -94,16 +63,12 @@ impl Gen<'_> {
                     .map_or(0, |k| k + 1);
                 for (pi, inst) in r.programs.iter().enumerate() {
                     let var = format!("prog_{ci}_{ri}_{pi}");
-                    let _ = writeln!(
-                        data,
-                        "static {} {var};",
-                        names::pou_type_name(m, inst.pou.0 as usize)
-                    );
-                    instances.push((var, inst.pou.0 as usize, format!("{ctx}U")));
+                    let _ = writeln!(data, "static {} {var};", names::pou_type_name(m, inst.pou));
+                    instances.push((var, inst.pou, format!("{ctx}U")));
                 }
             }
         }
-        for (p, pou) in m.pous.iter().enumerate() {
+        for (p, pou) in m.pous.iter_enumerated() {
             if pou.kind == PouKind::Program {
                 let var = format!("prog_{p}");
                 let _ = writeln!(data, "static {} {var};", names::pou_type_name(m, p));
@@ -117,7 +82,7 @@ impl Gen<'_> {
             let n = names::io_name(a);
             init.push(format!("(void)memset(&{n}, 0, sizeof {n});"));
         }
-        for (gi, g) in m.globals.iter().enumerate() {
+        for (gi, g) in m.globals.iter_enumerated() {
             if g.location.as_ref().is_some_and(|a| !a.is_incomplete()) {
                 continue;
             }
@@ -133,7 +98,7 @@ impl Gen<'_> {
             let n = self.io_access(&a, t)?;
             self.init_value(&n, t, init, Some("0U"), 0)?;
         }
-        for (gi, g) in m.globals.iter().enumerate() {
+        for (gi, g) in m.globals.iter_enumerated() {
             if g.location.as_ref().is_some_and(|a| !a.is_incomplete()) {
                 continue;
             }
@@ -184,12 +149,12 @@ impl Gen<'_> {
                         let mut items = Vec::new();
                         for (v, d) in list {
                             let var_def = m.pous[*p].var(*v);
-                            let vty = g.meta_type(MetaKey::Type(var_def.ty));
+                            let vty = g.meta_type(var_def.ty)?;
                             let (ptr, dty) = g.data_ref(d, var_def.ty, t)?;
                             items.push(format!(
                                 "{{ offsetof({}, {}), {vty}U, {ptr}, {dty}U }}",
                                 names::pou_type_name(m, *p),
-                                names::var_name(m, v.0 as usize, var_def)
+                                names::var_name(m, *v, var_def)
                             ));
                         }
                         let name = format!("conn_{tag}_{ci}_{ri}_{pi}");
@@ -205,7 +170,7 @@ impl Gen<'_> {
                     };
                     let (ins, n_in) = conns(self, &inst.inputs, "in", &mut t)?;
                     let (outs, n_out) = conns(self, &inst.outputs, "out", &mut t)?;
-                    let ty = self.meta_type(MetaKey::Pou(*p));
+                    let ty = self.meta_pou(*p)?;
                     progs.push(format!(
                         "{{ {}, {ty}U, &{var}, W{p}, {}, {ins}, {n_in}U, {outs}, {n_out}U }}",
                         c_str(m.spelled(inst.name, inst.name_span)),
@@ -265,7 +230,7 @@ impl Gen<'_> {
             ));
         }
         for (var, p, _) in inst_iter {
-            let ty = self.meta_type(MetaKey::Pou(*p));
+            let ty = self.meta_pou(*p)?;
             let pou = &m.pous[*p];
             programs_out.push(format!(
                 "{{ {}, {ty}U, &{var}, W{p}, -1, NULL, 0U, NULL, 0U }}",
@@ -273,8 +238,8 @@ impl Gen<'_> {
             ));
         }
         let mut globals_out = Vec::new();
-        for (gi, g) in m.globals.iter().enumerate() {
-            let ty = self.meta_type(MetaKey::Type(g.ty));
+        for (gi, g) in m.globals.iter_enumerated() {
+            let ty = self.meta_type(g.ty)?;
             let config = m.config_of_global(gi).map_or(-1, |c| c as i64);
             globals_out.push(format!(
                 "{{ {}, {ty}U, &{}, {config}, {}, {}U }}",
@@ -289,7 +254,7 @@ impl Gen<'_> {
         let mut io_out = Vec::new();
         for a in &io {
             let t = self.io_type(a);
-            let ty = self.meta_type(MetaKey::Type(t));
+            let ty = self.meta_type(t)?;
             io_out.push(format!(
                 "{{ {}, &{}, {ty}U }}",
                 c_str(&a.to_string()),
@@ -298,7 +263,7 @@ impl Gen<'_> {
         }
         // Program body wrappers (the harness calls `void body(void *)`).
         let mut wrappers = String::new();
-        for (p, pou) in m.pous.iter().enumerate() {
+        for (p, pou) in m.pous.iter_enumerated() {
             if pou.kind == PouKind::Program {
                 let tn = names::pou_type_name(m, p);
                 let _ = writeln!(
@@ -309,7 +274,7 @@ impl Gen<'_> {
             }
         }
         // Types last: everything above may have added to them.
-        let types_out = std::mem::take(&mut self.meta_types);
+        let types_out = self.meta_types()?;
         // The field's process image arrays (image.rs).
         let slots: Vec<(DirectAddress, TypeId)> =
             io.iter().map(|a| (a.clone(), self.io_type(a))).collect();
@@ -387,18 +352,12 @@ impl Gen<'_> {
         let m = self.m;
         Ok(match d {
             DataRef::Global(g) => {
-                let gd = &m.globals[g.0 as usize];
-                (
-                    format!("&{}", global_lvalue(m, g.0 as usize)),
-                    self.meta_type(MetaKey::Type(gd.ty)),
-                )
+                let gd = &m.globals[*g];
+                (format!("&{}", global_lvalue(m, *g)), self.meta_type(gd.ty)?)
             }
             DataRef::Direct(a) => {
                 let t = self.io_type(a);
-                (
-                    format!("&{}", names::io_name(a)),
-                    self.meta_type(MetaKey::Type(t)),
-                )
+                (format!("&{}", names::io_name(a)), self.meta_type(t)?)
             }
             DataRef::Const(v) => {
                 let e = self.scalar(ty).ok_or_else(|| {
@@ -410,32 +369,41 @@ impl Gen<'_> {
                 let n = format!("cconst_{}", self.f.next_temp);
                 self.f.next_temp += 1;
                 let _ = writeln!(t, "static {} {n} = {};", elem_c(e), literal(e, v));
-                (format!("&{n}"), self.meta_type(MetaKey::Type(ty)))
+                (format!("&{n}"), self.meta_type(ty)?)
             }
         })
     }
 
-    /// The index of a type's descriptor (added on first use).
-    pub(super) fn meta_type(&mut self, key: MetaKey) -> u32 {
-        let key = match key {
-            MetaKey::Type(t) => match self.m.types.kind(t) {
-                TypeKind::Fb(p) | TypeKind::Program(p) => MetaKey::Pou(p.0 as usize),
-                _ => key,
-            },
-            k => k,
-        };
-        if let Some(&i) = self.meta_map.get(&key) {
-            return i;
-        }
-        let i = self.meta_types.len() as u32;
-        self.meta_types.push(String::new());
-        self.meta_map.insert(key, i);
-        let desc = self.meta_desc(key, i);
-        self.meta_types[i as usize] = desc;
-        i
+    /// The index of a type's descriptor: the program model's numbering
+    /// (`stc_ir::model`), which the VM's image has too.
+    pub(super) fn meta_type(&self, t: TypeId) -> Result<u32, Error> {
+        self.model.type_refs.get(&t).copied().ok_or_else(|| {
+            Error::Unsupported("internal error: a type the program model does not have".into())
+        })
     }
 
-    pub(super) fn meta_desc(&mut self, key: MetaKey, i: u32) -> String {
+    /// The index of the descriptor of POU `p`'s instances.
+    pub(super) fn meta_pou(&self, p: PouId) -> Result<u32, Error> {
+        self.model
+            .model
+            .pous
+            .get(p.index())
+            .map(|d| d.instance_type)
+            .ok_or_else(|| Error::Unsupported("internal error: a POU without a model".into()))
+    }
+
+    /// The `stc_types` table: one row per type of the program model, in
+    /// its order, with the C sizes and offsets.
+    pub(super) fn meta_types(&mut self) -> Result<Vec<String>, Error> {
+        let mut rows = Vec::new();
+        for i in 0..self.model.model.types.len() {
+            let row = self.meta_desc(i as u32)?;
+            rows.push(row);
+        }
+        Ok(rows)
+    }
+
+    fn meta_desc(&mut self, i: u32) -> Result<String, Error> {
         let m = self.m;
         let row = |kind: &str,
                    elem: u32,
@@ -455,30 +423,45 @@ impl Gen<'_> {
                 "{{ {kind}, {elem}U, {wide}U, {cap}U, {name}, {count}U, {values}, {members}, {dims}, {et}U, {stride}, {size}, INT64_C({lo}), INT64_C({hi}) }}"
             )
         };
-        match key {
-            MetaKey::Pou(p) => {
-                let pou = &m.pous[p];
+        let desc = self.model.model.types[i as usize].clone();
+        let cname = match self.model.type_ids.get(i as usize).copied().flatten() {
+            Some(t) if matches!(m.types.kind(t), TypeKind::Error | TypeKind::Void) => None,
+            Some(t) => {
+                self.define(t);
+                Some((t, names::type_name(m, t)))
+            }
+            None => None,
+        };
+        let size = |cname: &Option<(TypeId, String)>| match cname {
+            Some((_, tn)) => format!("sizeof({tn})"),
+            None => "1U".to_string(),
+        };
+        Ok(match desc {
+            TypeDesc::Instance { pou } => {
+                let p = PouId(pou);
+                let d = self.model.model.pous[p.index()].clone();
+                // A function has no instance, and a POU the program never
+                // uses has no C type: their descriptors keep the model's
+                // variables with no place.
+                let generated = d.kind != ModelPouKind::Function && self.defined_pous.contains(&p);
                 let tn = names::pou_type_name(m, p);
                 let mut members = Vec::new();
-                for (vi, v) in pou.vars.iter().enumerate() {
-                    let vty = self.meta_type(MetaKey::Type(v.ty));
-                    let in_frame = v.storage == Storage::Frame;
-                    let kind = if v.hidden.is_some() {
-                        "STC_VK_HIDDEN"
-                    } else if in_frame {
-                        "STC_VK_TEMP"
-                    } else {
-                        var_kind(v.section)
-                    };
-                    let off = if in_frame {
+                for (vi, (v, var)) in d.vars.iter().zip(&m.pous[p].vars).enumerate() {
+                    let off = if v.in_frame || !generated {
                         "0U".to_string()
                     } else {
-                        format!("offsetof({tn}, {})", names::var_name(m, vi, v))
+                        format!(
+                            "offsetof({tn}, {})",
+                            names::var_name(m, VarId::new(vi), var)
+                        )
                     };
                     members.push(format!(
-                        "{{ {}, {vty}U, {off}, {kind}, {}U, {}U, {} }}",
-                        c_str(m.spelled(v.name, v.span)),
-                        (v.storage == Storage::Ref) as u8,
+                        "{{ {}, {}U, {off}, {}U, {}U, {}U, {}U, {} }}",
+                        c_str(&v.name),
+                        v.ty,
+                        v.kind.code(),
+                        v.in_frame as u8,
+                        v.is_ref as u8,
                         v.constant as u8,
                         v.location
                             .as_ref()
@@ -488,194 +471,175 @@ impl Gen<'_> {
                 let mn = self.member_table(i, &members);
                 row(
                     "STC_TK_INSTANCE",
+                    u32::from(d.kind.code()),
                     0,
                     0,
-                    0,
-                    c_str(m.spelled(pou.name, pou.name_span)),
+                    c_str(&d.name),
                     members.len(),
                     "NULL".into(),
                     mn,
                     "NULL".into(),
                     0,
                     "0U".into(),
-                    format!("sizeof({tn})"),
+                    if generated {
+                        format!("sizeof({tn})")
+                    } else {
+                        "0U".into()
+                    },
                     0,
                     0,
                 )
             }
-            MetaKey::Type(t) => {
-                self.define(t);
-                let tn = names::type_name(m, t);
-                match m.types.kind(t).clone() {
-                    TypeKind::Elem(e) => row(
-                        "STC_TK_SCALAR",
-                        elem_code(e),
-                        0,
-                        0,
-                        "NULL".into(),
-                        0,
-                        "NULL".into(),
-                        "NULL".into(),
-                        "NULL".into(),
-                        0,
-                        "0U".into(),
-                        format!("sizeof({tn})"),
-                        0,
-                        0,
-                    ),
-                    TypeKind::Subrange { base, lo, hi } => row(
-                        "STC_TK_SUBRANGE",
-                        elem_code(base),
-                        0,
-                        0,
-                        "NULL".into(),
-                        0,
-                        "NULL".into(),
-                        "NULL".into(),
-                        "NULL".into(),
-                        0,
-                        "0U".into(),
-                        format!("sizeof({tn})"),
-                        lo,
-                        hi,
-                    ),
-                    TypeKind::String { wide, len } => row(
-                        "STC_TK_STRING",
-                        elem_code(if wide {
-                            ElemType::Wstring
-                        } else {
-                            ElemType::String
-                        }),
-                        wide as u8,
-                        len,
-                        "NULL".into(),
-                        0,
-                        "NULL".into(),
-                        "NULL".into(),
-                        "NULL".into(),
-                        0,
-                        "0U".into(),
-                        format!("sizeof({tn})"),
-                        0,
-                        0,
-                    ),
-                    TypeKind::Enum { values, base } => {
-                        let vn = format!("meta_values_{i}");
-                        let list: Vec<String> = values
-                            .iter()
-                            .map(|v| {
-                                format!(
-                                    "{{ {}, INT64_C({}) }}",
-                                    c_str(m.spelled(v.name, v.span)),
-                                    v.value
-                                )
-                            })
-                            .collect();
-                        let _ = writeln!(
-                            self.meta_extra,
-                            "static const stc_enum_value {vn}[{}] = {{\n    {}\n}};",
-                            list.len().max(1),
-                            if list.is_empty() {
-                                "{ NULL, 0 }".to_string()
-                            } else {
-                                list.join(",\n    ")
-                            }
-                        );
-                        row(
-                            "STC_TK_ENUM",
-                            elem_code(base),
-                            0,
-                            0,
-                            c_str(m.type_name(t).unwrap_or("")),
-                            values.len(),
-                            vn,
-                            "NULL".into(),
-                            "NULL".into(),
-                            0,
-                            "0U".into(),
-                            format!("sizeof({tn})"),
-                            0,
-                            0,
-                        )
+            TypeDesc::Scalar(e) => row(
+                "STC_TK_SCALAR",
+                elem_code(e),
+                0,
+                0,
+                "NULL".into(),
+                0,
+                "NULL".into(),
+                "NULL".into(),
+                "NULL".into(),
+                0,
+                "0U".into(),
+                size(&cname),
+                0,
+                0,
+            ),
+            TypeDesc::Subrange { base, lo, hi } => row(
+                "STC_TK_SUBRANGE",
+                elem_code(base),
+                0,
+                0,
+                "NULL".into(),
+                0,
+                "NULL".into(),
+                "NULL".into(),
+                "NULL".into(),
+                0,
+                "0U".into(),
+                size(&cname),
+                lo,
+                hi,
+            ),
+            TypeDesc::String { wide, cap } => row(
+                "STC_TK_STRING",
+                elem_code(if wide {
+                    ElemType::Wstring
+                } else {
+                    ElemType::String
+                }),
+                wide as u8,
+                cap,
+                "NULL".into(),
+                0,
+                "NULL".into(),
+                "NULL".into(),
+                "NULL".into(),
+                0,
+                "0U".into(),
+                size(&cname),
+                0,
+                0,
+            ),
+            TypeDesc::Enum { name, base, values } => {
+                let vn = format!("meta_values_{i}");
+                let list: Vec<String> = values
+                    .iter()
+                    .map(|(n, v)| format!("{{ {}, INT64_C({v}) }}", c_str(n)))
+                    .collect();
+                let _ = writeln!(
+                    self.meta_extra,
+                    "static const stc_enum_value {vn}[{}] = {{\n    {}\n}};",
+                    list.len().max(1),
+                    if list.is_empty() {
+                        "{ NULL, 0 }".to_string()
+                    } else {
+                        list.join(",\n    ")
                     }
-                    TypeKind::Array { dims, elem } => {
-                        let et = self.meta_type(MetaKey::Type(elem));
-                        let dn = format!("meta_dims_{i}");
-                        let list: Vec<String> = dims
-                            .iter()
-                            .map(|(l, h)| format!("{{ INT64_C({l}), INT64_C({h}) }}"))
-                            .collect();
-                        let _ = writeln!(
-                            self.meta_extra,
-                            "static const stc_dim {dn}[{}] = {{ {} }};",
-                            list.len().max(1),
-                            list.join(", ")
-                        );
-                        row(
-                            "STC_TK_ARRAY",
-                            0,
-                            0,
-                            0,
-                            "NULL".into(),
-                            dims.len(),
-                            "NULL".into(),
-                            "NULL".into(),
-                            dn,
-                            et,
-                            format!("sizeof({})", names::type_name(m, elem)),
-                            format!("sizeof({tn})"),
-                            0,
-                            0,
-                        )
-                    }
-                    TypeKind::Struct { fields } => {
-                        let mut members = Vec::new();
-                        for f in &fields {
-                            let ft = self.meta_type(MetaKey::Type(f.ty));
-                            members.push(format!(
-                                "{{ {}, {ft}U, offsetof({tn}, m_{}), STC_VK_FIELD, 0U, 0U, NULL }}",
-                                c_str(m.spelled(f.name, f.span)),
-                                names::ident(m.spelled(f.name, f.span))
-                            ));
-                        }
-                        let mn = self.member_table(i, &members);
-                        row(
-                            "STC_TK_STRUCT",
-                            0,
-                            0,
-                            0,
-                            m.type_name(t).map_or("NULL".to_string(), c_str),
-                            fields.len(),
-                            "NULL".into(),
-                            mn,
-                            "NULL".into(),
-                            0,
-                            "0U".into(),
-                            format!("sizeof({tn})"),
-                            0,
-                            0,
-                        )
-                    }
-                    TypeKind::Fb(_) | TypeKind::Program(_) => String::new(),
-                    TypeKind::Error | TypeKind::Void => row(
-                        "STC_TK_SCALAR",
-                        elem_code(ElemType::Bool),
-                        0,
-                        0,
-                        "NULL".into(),
-                        0,
-                        "NULL".into(),
-                        "NULL".into(),
-                        "NULL".into(),
-                        0,
-                        "0U".into(),
-                        "1U".into(),
-                        0,
-                        0,
-                    ),
-                }
+                );
+                row(
+                    "STC_TK_ENUM",
+                    elem_code(base),
+                    0,
+                    0,
+                    c_str(&name),
+                    values.len(),
+                    vn,
+                    "NULL".into(),
+                    "NULL".into(),
+                    0,
+                    "0U".into(),
+                    size(&cname),
+                    0,
+                    0,
+                )
             }
-        }
+            TypeDesc::Array { elem, dims, .. } => {
+                let dn = format!("meta_dims_{i}");
+                let list: Vec<String> = dims
+                    .iter()
+                    .map(|(l, h)| format!("{{ INT64_C({l}), INT64_C({h}) }}"))
+                    .collect();
+                let _ = writeln!(
+                    self.meta_extra,
+                    "static const stc_dim {dn}[{}] = {{ {} }};",
+                    list.len().max(1),
+                    list.join(", ")
+                );
+                let stride = match cname.as_ref().map(|(t, _)| m.types.kind(*t)) {
+                    Some(TypeKind::Array { elem, .. }) => {
+                        format!("sizeof({})", names::type_name(m, *elem))
+                    }
+                    _ => "0U".into(),
+                };
+                row(
+                    "STC_TK_ARRAY",
+                    0,
+                    0,
+                    0,
+                    "NULL".into(),
+                    dims.len(),
+                    "NULL".into(),
+                    "NULL".into(),
+                    dn,
+                    elem,
+                    stride,
+                    size(&cname),
+                    0,
+                    0,
+                )
+            }
+            TypeDesc::Struct { name, fields } => {
+                let tn = cname.as_ref().map_or(String::new(), |(_, tn)| tn.clone());
+                let mut members = Vec::new();
+                for f in &fields {
+                    members.push(format!(
+                        "{{ {}, {}U, offsetof({tn}, m_{}), STC_VK_FIELD, 0U, 0U, 0U, NULL }}",
+                        c_str(&f.name),
+                        f.ty,
+                        names::ident(&f.name)
+                    ));
+                }
+                let mn = self.member_table(i, &members);
+                row(
+                    "STC_TK_STRUCT",
+                    0,
+                    0,
+                    0,
+                    name.as_deref().map_or("NULL".to_string(), c_str),
+                    fields.len(),
+                    "NULL".into(),
+                    mn,
+                    "NULL".into(),
+                    0,
+                    "0U".into(),
+                    size(&cname),
+                    0,
+                    0,
+                )
+            }
+        })
     }
 
     /// Writes the member table `meta_members_<i>` of a struct or instance
@@ -688,7 +652,7 @@ impl Gen<'_> {
             "static const stc_member {mn}[{}] = {{\n    {}\n}};",
             members.len().max(1),
             if members.is_empty() {
-                "{ NULL, 0U, 0U, 0U, 0U, 0U, NULL }".to_string()
+                "{ NULL, 0U, 0U, 0U, 0U, 0U, 0U, NULL }".to_string()
             } else {
                 members.join(",\n    ")
             }

@@ -121,8 +121,8 @@ impl Types {
         Types {
             module: Module {
                 types: t,
-                pous: Vec::new(),
-                globals: Vec::new(),
+                pous: Default::default(),
+                globals: Default::default(),
                 configs: Vec::new(),
                 names: Vec::new(),
                 spellings: Default::default(),

@@ -8,8 +8,9 @@
 
 use proptest::prelude::*;
 use stc_diagnostics::{Code, Span};
+use stc_sema::idx::Idx;
 use stc_sema::types::Field;
-use stc_sema::{PouId, Section, TypeId, TypeKind, TypeTable};
+use stc_sema::{PouId, Section, TypeId, TypeKind, TypeTable, VarId};
 use stc_syntax::ast::PouKind;
 use stc_syntax::token::ElemType;
 use stc_syntax::Symbol;
@@ -194,7 +195,7 @@ impl Builder {
         self.pous.push(Pou {
             kind,
             name: Symbol(0),
-            vars,
+            vars: vars.into(),
             result: None,
             body: Vec::new(),
             is_std: false,
@@ -296,7 +297,7 @@ fn module(vars: &[(Spec, Kind)], locals: &[Spec], globals: &[Spec]) -> Module {
     b.pou(PouKind::Program, pvars);
     Module {
         types: b.types,
-        pous: b.pous,
+        pous: b.pous.into(),
         globals,
         configs: Vec::new(),
         names: vec!["x".into()],
@@ -366,14 +367,13 @@ fn check_layouts(m: &Module, l: &Layouts) -> Result<(), TestCaseError> {
             _ => {}
         }
     }
-    for (p, pou) in m.pous.iter().enumerate() {
+    for (p, pou) in m.pous.iter_enumerated() {
         let pl = &l.pous[p];
         for frame in [false, true] {
             let area = if frame { pl.frame } else { pl.instance };
             let members: Vec<(u32, u32, u32)> = pou
                 .vars
-                .iter()
-                .enumerate()
+                .iter_enumerated()
                 .filter(|(i, _)| pl.in_frame[*i] == frame)
                 .map(|(i, v)| {
                     let vl = if v.storage == Storage::Ref {
@@ -419,10 +419,10 @@ proptest! {
                 prop_assert!(!over, "the model finds something over the limit");
                 check_layouts(&m, &l)?;
                 // Sizes are the model's.
-                let main = m.pous.len() - 1;
+                let main = m.pous.ids().last().expect("a program");
                 for (i, (s, k)) in vars.iter().enumerate() {
                     if *k != Kind::Ref {
-                        let got = u128::from(l.of(m.pous[main].vars[i].ty).size);
+                        let got = u128::from(l.of(m.pous[main].vars[VarId::new(i)].ty).size);
                         prop_assert_eq!(Some(got), model(s).0);
                     }
                 }

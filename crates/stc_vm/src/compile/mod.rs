@@ -19,16 +19,18 @@ use rustc_hash::FxHashMap;
 use stc_diagnostics::{Code, Diagnostic, Span};
 use stc_ir::layout::{elem_size, Layouts, MAX_SIZE};
 use stc_ir::{Expr, ExprKind, FaultKind, Module, Place, Proj, Root, Stmt, StmtKind, Storage};
-use stc_sema::{InitValue, PouId, Section, TypeId, TypeKind, VarId};
+use stc_sema::{PouId, Section, TypeId, TypeKind, VarId};
 use stc_syntax::ast::PouKind as AstPouKind;
-use stc_syntax::literal::{AddrSize, DirectAddress};
+use stc_syntax::literal::AddrSize;
 use stc_syntax::token::ElemType;
 use stc_values::{BinOp, UnOp, Value};
 
 use crate::image::*;
 use crate::instr::{Instr, Op, Tgt};
-use crate::machine::{write_scalar, write_string};
 use crate::num::Num;
+use stc_ir::model::{Builder, ModelError};
+use stc_sema::idx::{IdVec, Idx};
+use std::sync::Arc;
 
 #[derive(Debug, thiserror::Error)]
 pub enum CompileError {
@@ -96,7 +98,7 @@ struct PlaceLoc {
 #[derive(Default)]
 struct Frame {
     /// Offset of each frame variable.
-    var_off: FxHashMap<u32, u32>,
+    var_off: FxHashMap<VarId, u32>,
     /// Top of the temporaries.
     top: u32,
     max: u32,
@@ -112,18 +114,12 @@ struct LoopCtx {
 
 pub struct Compiler<'a> {
     m: &'a Module,
-    l: Layouts,
+    l: &'a Layouts,
+    /// The program model with its data area (`stc_ir::model`).
+    d: Builder<'a>,
     code: Vec<Instr>,
     lines: Vec<LineEntry>,
     files: Vec<String>,
-    types: Vec<TypeDesc>,
-    type_map: FxHashMap<TypeId, TypeRef>,
-    data: Vec<u8>,
-    io: Vec<IoSlot>,
-    io_map: FxHashMap<DirectAddress, u32>,
-    /// The private variables of unbound VAR_EXTERNALs, by (POU, variable).
-    private_externals: FxHashMap<(u32, usize), u32>,
-    global_off: Vec<u32>,
     consts: Vec<u8>,
     const_map: FxHashMap<Vec<u8>, u32>,
     calls: Vec<StdCall>,
@@ -131,172 +127,65 @@ pub struct Compiler<'a> {
     elem_map: FxHashMap<ElemDesc, u32>,
     pous: Vec<PouCode>,
     /// Per POU: the frame layout (set when the POU is compiled).
-    frames: Vec<Option<FrameInfo>>,
+    frames: IdVec<PouId, Option<FrameInfo>>,
     // State of the POU being compiled.
     cur: PouId,
     frame: Frame,
     loops: Vec<LoopCtx>,
-    data_frozen: bool,
-    /// The first error met where it could not be returned at once (data
-    /// allocated while initialising): no image is built after one.
+    /// The first error met where it could not be returned at once (the
+    /// constant pool growing too large): no image is built after one.
     failed: Option<CompileError>,
 }
 
 #[derive(Clone)]
 struct FrameInfo {
-    var_off: FxHashMap<u32, u32>,
+    var_off: FxHashMap<VarId, u32>,
     size: u32,
 }
 
 /// Compiles a module (without errors) to an image.
 pub fn compile(m: &Module) -> Result<Image, CompileError> {
+    let l = Layouts::compute(m).map_err(CompileError::Diagnostics)?;
+    let d = Builder::new(m, &l).map_err(model_error)?;
     let c = Compiler {
         m,
-        l: Layouts::compute(m).map_err(CompileError::Diagnostics)?,
+        l: &l,
+        pous: (0..m.pous.len())
+            .map(|_| PouCode {
+                entry: 0,
+                frame_size: 0,
+                frame_init_at: 0,
+                frame_template: (0, 0),
+            })
+            .collect(),
+        d,
         code: Vec::new(),
         lines: Vec::new(),
         files: Vec::new(),
-        types: Vec::new(),
-        type_map: FxHashMap::default(),
-        data: Vec::new(),
-        io: Vec::new(),
-        io_map: FxHashMap::default(),
-        private_externals: FxHashMap::default(),
-        global_off: Vec::new(),
         consts: Vec::new(),
         const_map: FxHashMap::default(),
         calls: Vec::new(),
         elems: Vec::new(),
         elem_map: FxHashMap::default(),
-        pous: Vec::new(),
-        frames: vec![None; m.pous.len()],
+        frames: m.pous.iter().map(|_| None).collect(),
         cur: PouId(0),
         frame: Frame::default(),
         loops: Vec::new(),
-        data_frozen: false,
         failed: None,
     };
     c.run()
 }
 
+/// A model that could not be built, as the compiler's error.
+fn model_error(e: ModelError) -> CompileError {
+    match e {
+        ModelError::Diagnostics(d) => CompileError::Diagnostics(d),
+        ModelError::Internal(s) => CompileError::Internal(s),
+    }
+}
+
 impl<'a> Compiler<'a> {
     fn run(mut self) -> Result<Image, CompileError> {
-        // POU descriptors first (instances refer to them by index).
-        for (i, p) in self.m.pous.iter().enumerate() {
-            let kind = match p.kind {
-                AstPouKind::Function => PouKind::Function,
-                AstPouKind::FunctionBlock => PouKind::FunctionBlock,
-                AstPouKind::Program => PouKind::Program,
-            };
-            self.pous.push(PouCode {
-                name: self.m.spelled(p.name, p.name_span).to_string(),
-                kind,
-                entry: 0,
-                instance_size: self.l.pous[i].instance.size,
-                frame_size: 0,
-                frame_init_at: 0,
-                frame_template: (0, 0),
-                vars: Vec::new(),
-                instance_type: 0,
-            });
-        }
-        for i in 0..self.m.pous.len() {
-            let t = self.types.len() as u32;
-            self.types.push(TypeDesc::Instance { pou: i as u32 });
-            self.pous[i].instance_type = t;
-        }
-        // Data: process image, globals, program instances.
-        self.collect_io();
-        // Located variables' initial values, once per slot (stc_ir).
-        let m = self.m;
-        for (a, t, init) in m.located_inits() {
-            let off = self.io_slot(&a, t, Span::default());
-            self.write_init(t, off, init, None);
-        }
-        let mut globals = Vec::new();
-        for (gi, g) in self.m.globals.iter().enumerate() {
-            let lay = self.l.of(g.ty);
-            let off = match g.location.as_ref().filter(|a| !a.is_incomplete()) {
-                Some(a) => self.io_slot(a, g.ty, g.span),
-                None => {
-                    let what = format!("global `{}`", self.m.spelled(g.name, g.span));
-                    let off = self.alloc_data(lay.size, lay.align, g.span, &what)?;
-                    self.write_init(g.ty, off, g.init.as_ref(), None);
-                    off
-                }
-            };
-            self.global_off.push(off);
-            let ty = self.ty_ref(g.ty);
-            let config = self.m.config_of_global(gi).map(|c| c as u32);
-            globals.push(GlobalDesc {
-                name: self.m.spelled(g.name, g.span).to_string(),
-                ty,
-                offset: off,
-                config,
-                location: g.location.clone(),
-                constant: g.constant,
-            });
-        }
-        let mut configs = Vec::new();
-        for (ci, c) in self.m.configs.iter().enumerate() {
-            let mut resources = Vec::new();
-            for (ri, r) in c.resources.iter().enumerate() {
-                let tasks = r
-                    .tasks
-                    .iter()
-                    .map(|t| TaskDesc {
-                        name: self.m.name(t.name).to_string(),
-                        interval_ns: t.interval,
-                        priority: t.priority,
-                        single: t
-                            .single
-                            .as_ref()
-                            .and_then(|s| self.source(s, self.m.types_bool(), t.span)),
-                    })
-                    .collect();
-                let mut programs = Vec::new();
-                for inst in &r.programs {
-                    programs.push(self.program_instance(
-                        self.m.spelled(inst.name, inst.name_span).to_string(),
-                        inst.pou,
-                        inst.task.map(|t| t as u32),
-                        Some((ci, ri)),
-                        inst,
-                    )?);
-                }
-                resources.push(ResourceDesc {
-                    name: r.name.map(|n| self.m.name(n).to_string()),
-                    tasks,
-                    programs,
-                });
-            }
-            configs.push(ConfigDesc {
-                name: self.m.name(c.name).to_string(),
-                resources,
-            });
-        }
-        let mut programs = Vec::new();
-        for (i, p) in self.m.pous.iter().enumerate() {
-            if p.kind == AstPouKind::Program {
-                let off = self.instance(PouId(i as u32), None, p.name_span)?;
-                programs.push(ProgramInst {
-                    name: self.m.name(p.name).to_string(),
-                    pou: i as u32,
-                    offset: off,
-                    task: None,
-                    inputs: Vec::new(),
-                    outputs: Vec::new(),
-                });
-            }
-        }
-        self.data_frozen = true;
-        if let Some(e) = self.failed.take() {
-            return Err(e);
-        }
-        // Variable descriptors.
-        for i in 0..self.m.pous.len() {
-            self.pou_vars(PouId(i as u32));
-        }
         // Code, callees first.
         for p in self.callee_order() {
             self.compile_pou(p)?;
@@ -305,13 +194,17 @@ impl<'a> Compiler<'a> {
             return Err(e);
         }
         let stack_size = self.stack_need();
-        let data_size = self.data.len() as u32;
+        let data_size = self.d.data_size();
         // The whole memory: data, constants, stack.
         let memory = u64::from(data_size) + self.consts.len() as u64 + u64::from(stack_size);
         if memory > MAX_SIZE {
-            let deepest = (0..self.m.pous.len())
-                .max_by_key(|&i| self.pous[i].frame_size)
-                .map_or(Span::default(), |i| self.m.pous[i].name_span);
+            let deepest = self
+                .m
+                .pous
+                .iter()
+                .zip(&self.pous)
+                .max_by_key(|(_, c)| c.frame_size)
+                .map_or(Span::default(), |(p, _)| p.name_span);
             return Err(too_large(
                 deepest,
                 format!(
@@ -322,23 +215,25 @@ impl<'a> Compiler<'a> {
                 memory,
             ));
         }
+        let data = self.d.finish();
         Ok(Image {
             code: self.code,
             consts: self.consts,
             data_size,
-            init: self.data,
+            init: data.init,
             stack_size,
-            types: self.types,
+            model: Arc::new(data.model),
             pous: self.pous,
-            globals,
-            configs,
-            programs,
-            io: self.io,
             calls: self.calls,
             elems: self.elems,
             lines: self.lines,
             files: self.files,
         })
+    }
+
+    /// Keeps the first error met where it cannot be returned at once.
+    fn defer(&mut self, e: CompileError) {
+        self.failed.get_or_insert(e);
     }
 
     // ----- constants and temporaries -------------------------------------------
@@ -351,7 +246,7 @@ impl<'a> Compiler<'a> {
             return off;
         }
         if self.consts.len() as u64 + bytes.len() as u64 > MAX_SIZE {
-            let at = self.m.pous[self.cur.0 as usize].name_span;
+            let at = self.m.pous[self.cur].name_span;
             let size = self.consts.len() as u64 + bytes.len() as u64;
             self.defer(too_large(at, "the constant pool".into(), size));
             return 0;
@@ -365,9 +260,9 @@ impl<'a> Compiler<'a> {
 
     /// An operand holding a constant.
     fn konst(&mut self, t: TypeId, v: &Value) -> Op {
-        let bytes = self.value_bytes(t, v);
+        let bytes = self.d.value_bytes(t, v);
         let off = self.const_bytes(&bytes, 8);
-        Op::abs(self.data.len() as u32 + off)
+        Op::abs(self.d.data_size() + off)
     }
 
     fn elem_desc(&mut self, d: ElemDesc) -> u32 {
@@ -382,7 +277,7 @@ impl<'a> Compiler<'a> {
 
     fn const_u32(&mut self, v: u32) -> Op {
         let off = self.const_bytes(&v.to_le_bytes(), 4);
-        Op::abs(self.data.len() as u32 + off)
+        Op::abs(self.d.data_size() + off)
     }
 
     /// A temporary of `size` bytes in the frame. One that does not fit in
@@ -431,7 +326,7 @@ impl<'a> Compiler<'a> {
         let file = self
             .files
             .iter()
-            .position(|f| *f == self.m.pous[self.cur.0 as usize].file)
+            .position(|f| *f == self.m.pous[self.cur].file)
             .unwrap_or(0) as u32;
         let entry = LineEntry {
             pc: self.here(),
@@ -1056,19 +951,19 @@ impl<'a> Compiler<'a> {
     // ----- places ------------------------------------------------------------------
 
     fn var_loc(&mut self, v: VarId) -> Result<Loc, CompileError> {
-        let pou = &self.m.pous[self.cur.0 as usize];
+        let pou = &self.m.pous[self.cur];
         let var = pou.var(v);
-        let in_frame = self.l.pous[self.cur.0 as usize].in_frame[v.0 as usize];
+        let in_frame = self.l.pous[self.cur].in_frame[v];
         let slot = if in_frame {
             Op::frame(
                 *self
                     .frame
                     .var_off
-                    .get(&v.0)
+                    .get(&v)
                     .ok_or_else(|| internal("a frame variable without a place"))?,
             )
         } else {
-            Op::this(self.l.pous[self.cur.0 as usize].offsets[v.0 as usize])
+            Op::this(self.l.pous[self.cur].offsets[v])
         };
         Ok(if var.storage == Storage::Ref {
             Loc::Ptr { ptr: slot, off: 0 }
@@ -1092,21 +987,20 @@ impl<'a> Compiler<'a> {
         let mut loc = match &p.root {
             Root::Var(v) => self.var_loc(*v)?,
             Root::Global(g) => Loc::At(Op::abs(
-                *self
-                    .global_off
-                    .get(g.0 as usize)
+                self.d
+                    .global_offset(*g)
                     .ok_or_else(|| internal("a global without a place"))?,
             )),
             Root::Direct(a) => {
-                Loc::At(Op::abs(*self.io_map.get(a).ok_or_else(|| {
+                Loc::At(Op::abs(self.d.io_offset(a).ok_or_else(|| {
                     internal(format!("{a} without a process image slot"))
                 })?))
             }
         };
         // The type of the value reached so far, to find offsets.
         let mut ty = match &p.root {
-            Root::Var(v) => self.m.pous[self.cur.0 as usize].var(*v).ty,
-            Root::Global(g) => self.m.globals[g.0 as usize].ty,
+            Root::Var(v) => self.m.pous[self.cur].var(*v).ty,
+            Root::Global(g) => self.m.globals[*g].ty,
             Root::Direct(a) => self.m.addr_type(a),
         };
         let mut part = None;
@@ -1126,7 +1020,7 @@ impl<'a> Compiler<'a> {
                 Proj::FbVar(fb, v) => {
                     let off = self.l.var_offset(*fb, *v);
                     loc = offset_loc(loc, off);
-                    ty = self.m.pous[fb.0 as usize].var(*v).ty;
+                    ty = self.m.pous[*fb].var(*v).ty;
                 }
                 Proj::Index(idx) => {
                     let (dims, elem) = match self.m.types.kind(ty).clone() {
@@ -1722,17 +1616,17 @@ impl<'a> Compiler<'a> {
         inouts: &[(VarId, Place)],
         outputs: &[stc_ir::Output],
     ) -> Result<Option<Op>, CompileError> {
-        let info = self.frames[func.0 as usize]
+        let info = self.frames[func]
             .clone()
             .ok_or_else(|| internal("a call before its callee"))?;
-        let callee = &self.m.pous[func.0 as usize];
-        if (0..callee.vars.len()).any(|i| !info.var_off.contains_key(&(i as u32))) {
+        let callee = &self.m.pous[func];
+        if callee.vars.ids().any(|i| !info.var_off.contains_key(&i)) {
             return Err(internal(
                 "a variable of a function without a place in its frame",
             ));
         }
         let region = self.temp(info.size).offset();
-        let slot = |v: VarId| Op::frame(region + info.var_off[&v.0]);
+        let slot = |v: VarId| Op::frame(region + info.var_off[&v]);
         // Every input: given, or its initial value.
         for (i, v) in callee.vars.iter().enumerate() {
             if v.section != Section::Input {
@@ -1759,14 +1653,11 @@ impl<'a> Compiler<'a> {
                 }
                 None => {
                     let size = self.size_of(v.ty);
-                    let mut scratch = std::mem::take(&mut self.data);
-                    let base = scratch.len() as u32;
-                    scratch.resize((base + size) as usize, 0);
-                    self.data = scratch;
-                    self.write_init(v.ty, base, v.init.as_ref(), None);
-                    let bytes = self.data[base as usize..].to_vec();
-                    self.data.truncate(base as usize);
-                    let c = Op::abs(self.data.len() as u32 + self.const_bytes(&bytes, 8));
+                    let bytes = self
+                        .d
+                        .init_bytes(v.ty, v.init.as_ref())
+                        .map_err(model_error)?;
+                    let c = Op::abs(self.d.data_size() + self.const_bytes(&bytes, 8));
                     let d = slot(var);
                     self.mov(d, c, size);
                 }
@@ -1781,7 +1672,7 @@ impl<'a> Compiler<'a> {
             frame: region,
         });
         for o in outputs {
-            let var = &callee.vars[o.var.0 as usize];
+            let var = &callee.vars[o.var];
             let src = slot(o.var);
             self.copy_out(src, var.ty, o)?;
         }
@@ -1876,17 +1767,17 @@ impl<'a> Compiler<'a> {
         inouts: &[(VarId, Place)],
         outputs: &[stc_ir::Output],
     ) -> Result<(), CompileError> {
-        let info = self.frames[fb.0 as usize]
+        let info = self.frames[fb]
             .clone()
             .ok_or_else(|| internal("a call before its callee"))?;
         let pl = self.place(instance)?;
-        let lay = self.l.pous[fb.0 as usize].clone();
+        let lay = self.l.pous[fb].clone();
         let m = self.m;
-        let fbp = &m.pous[fb.0 as usize];
+        let fbp = &m.pous[fb];
         // Inputs, in order, into the instance.
         for (v, e) in inputs {
             let var = fbp.var(*v);
-            let off = lay.offsets[v.0 as usize];
+            let off = lay.offsets[*v];
             let dst = PlaceLoc {
                 loc: offset_loc(pl.loc, off),
                 part: None,
@@ -1901,7 +1792,7 @@ impl<'a> Compiler<'a> {
         }
         for (v, p) in inouts {
             let addr = self.address_of(p)?;
-            let off = lay.offsets[v.0 as usize];
+            let off = lay.offsets[*v];
             self.store_loc(offset_loc(pl.loc, off), addr, 4)?;
         }
         let region = self.temp(info.size).offset();
@@ -1924,7 +1815,7 @@ impl<'a> Compiler<'a> {
         }
         for o in outputs {
             let var = fbp.var(o.var);
-            let off = lay.offsets[o.var.0 as usize];
+            let off = lay.offsets[o.var];
             let src = match offset_loc(pl.loc, off) {
                 Loc::At(a) => a,
                 l => {

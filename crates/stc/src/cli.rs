@@ -49,6 +49,13 @@ enum Command {
         /// Output file or directory (text kinds go to stdout without it).
         #[arg(short = 'o', long = "output")]
         output: Option<PathBuf>,
+        /// `--emit netlist`: the CONFIGURATION to make a circuit of.
+        #[arg(long, value_name = "NAME", conflicts_with = "program")]
+        config: Option<String>,
+        /// `--emit netlist`: the PROGRAM to make a circuit of [default: the
+        /// only PROGRAM].
+        #[arg(long, value_name = "TYPE")]
+        program: Option<String>,
         #[arg(required = true)]
         files: Vec<PathBuf>,
     },
@@ -145,7 +152,7 @@ pub fn main(args: Vec<OsString>) -> u8 {
 /// Writes the file or directory tree a command produced.
 fn write_outputs(outcome: &Outcome) -> Result<(), String> {
     if let Some((path, bytes)) = &outcome.file {
-        std::fs::write(path, bytes).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        crate::output::write_file(path, bytes)?;
     }
     if let Some(tree) = &outcome.tree {
         crate::output::write_tree(&tree.0, &tree.1)?;
@@ -231,9 +238,14 @@ fn run(cli: Cli) -> Outcome {
             common,
             emit,
             output,
+            config,
+            program,
             files,
         } => {
             let opts = common.options();
+            if emit != Emit::Netlist && (config.is_some() || program.is_some()) {
+                return usage_error("--config and --program choose what --emit netlist makes");
+            }
             if emit == Emit::Ast {
                 let parsed = match load_and_parse(&files, &opts) {
                     Ok(p) => p,
@@ -306,12 +318,42 @@ fn run(cli: Cli) -> Outcome {
                     }
                     return o;
                 }
+                Emit::Netlist => {
+                    if let Some(c) = config {
+                        return usage_error(format!(
+                            "--config {c}: the netlist back end makes a circuit of one PROGRAM; choose it with --program"
+                        ));
+                    }
+                    let p = match stc_netlist::choose_program(&module, program.as_deref()) {
+                        Ok(p) => p,
+                        Err(e) => return usage_error(e),
+                    };
+                    match stc_netlist::translate(&module, p) {
+                        Ok(circuit) => {
+                            let doc = stc_netlist::xml::write(&circuit).into_bytes();
+                            // The process ends right after: freeing the
+                            // circuit piece by piece would only cost time.
+                            std::mem::forget(circuit);
+                            doc
+                        }
+                        Err(r) => {
+                            let d = r.to_diagnostic(&sources);
+                            o.stderr.push_str(&driver::render(&[d], &sources, &opts));
+                            o.status = EXIT_ERRORS;
+                            return o;
+                        }
+                    }
+                }
                 other => {
                     return usage_error(
                         format!("--emit {other:?} is not implemented yet").to_lowercase(),
                     )
                 }
             };
+            if emit == Emit::Netlist {
+                // (As for `stc check`: no point freeing the tree at exit.)
+                std::mem::forget(module);
+            }
             match output {
                 Some(path) => o.file = Some((path, bytes)),
                 None => o.stdout = String::from_utf8_lossy(&bytes).into_owned(),

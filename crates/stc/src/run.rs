@@ -99,13 +99,18 @@ fn usage_error(msg: impl std::fmt::Display) -> Outcome {
 
 /// Runs `stc run`.
 pub fn run(opts: &Options, args: RunArgs) -> Outcome {
-    if matches!(args.backend, Backend::Jit | Backend::Netlist) {
+    if args.backend == Backend::Jit {
         return usage_error(format!(
-            "--backend {}: this back end is not implemented yet (vm and c are)",
+            "--backend {}: this back end is not implemented yet (vm, c and netlist are)",
             format!("{:?}", args.backend).to_lowercase()
         ));
     }
-    match load(&args.files, opts, args.backend) {
+    if args.backend == Backend::Netlist && args.config.is_some() {
+        return usage_error(
+            "--backend netlist runs one PROGRAM (choose it with --program), not a configuration",
+        );
+    }
+    match load(&args.files, opts, args.backend, args.program.as_deref()) {
         Ok((engine, diagnostics)) => setup_and_run(engine, &args, diagnostics),
         Err(o) => o,
     }
@@ -117,6 +122,7 @@ fn load(
     files: &[PathBuf],
     opts: &Options,
     backend: Backend,
+    program: Option<&str>,
 ) -> Result<(Box<dyn Engine>, String), Outcome> {
     // Bytecode: a `.stbc` file, or its VMASM text (`--emit vmasm`), which
     // is assembled and verified like a loaded file.
@@ -184,6 +190,35 @@ fn load(
                 status: EXIT_USAGE,
                 ..Outcome::default()
             }),
+        };
+    }
+    if backend == Backend::Netlist {
+        if program.is_none() && !module.configs.is_empty() {
+            return Err(usage_error(
+                "--backend netlist runs one PROGRAM: choose it with --program",
+            ));
+        }
+        return match stc_engine_netlist::NetlistEngine::build(&module, program) {
+            Ok(engine) => Ok((Box::new(engine), rendered)),
+            Err(stc_engine_netlist::Error::Refused(r)) => Err(Outcome {
+                stderr: format!(
+                    "{rendered}{}",
+                    driver::render(&[r.to_diagnostic(&sources)], &sources, opts)
+                ),
+                status: EXIT_ERRORS,
+                ..Outcome::default()
+            }),
+            Err(e @ stc_engine_netlist::Error::Model(_)) => Err(Outcome {
+                stderr: format!("{rendered}internal error: {e}\n"),
+                status: crate::cli::EXIT_INTERNAL,
+                ..Outcome::default()
+            }),
+            Err(e @ stc_engine_netlist::Error::Read(_)) => Err(Outcome {
+                stderr: format!("{rendered}error: {e}\n"),
+                status: crate::cli::EXIT_INTERNAL,
+                ..Outcome::default()
+            }),
+            Err(e) => Err(usage_error(e)),
         };
     }
     match stc_vm::compile(&module) {

@@ -59,6 +59,23 @@ enum Command {
         #[command(flatten)]
         args: crate::run::RunArgs,
     },
+    /// Format source files in place (canonical layout, comments kept).
+    Fmt {
+        /// Change nothing: list the files that would change and exit 1 if any.
+        #[arg(long)]
+        check: bool,
+        /// How reserved words are spelled.
+        #[arg(long = "keyword-case", value_enum, default_value_t = KeywordCase::Upper)]
+        keyword_case: KeywordCase,
+        /// Spaces per indentation level.
+        #[arg(long = "indent", default_value_t = 4)]
+        indent: usize,
+        #[command(flatten)]
+        common: Common,
+        /// Source files or directories.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+    },
     /// Explain a diagnostic code.
     Explain {
         /// A code such as E0301.
@@ -94,6 +111,13 @@ enum WarningLevel {
 enum Std {
     Iec2,
     Iec3,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug)]
+enum KeywordCase {
+    Upper,
+    Lower,
+    Preserve,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -207,6 +231,29 @@ fn usage_error(msg: impl std::fmt::Display) -> Outcome {
 fn run(cli: Cli) -> Outcome {
     match cli.command {
         Command::Explain { code } => explain(&code),
+        Command::Fmt {
+            check,
+            keyword_case,
+            indent,
+            common,
+            files,
+        } => {
+            let diagnostics = common.options();
+            crate::fmt_cmd::run(&crate::fmt_cmd::FmtArgs {
+                files,
+                check,
+                format: stc_fmt::Options {
+                    keyword_case: match keyword_case {
+                        KeywordCase::Upper => stc_fmt::KeywordCase::Upper,
+                        KeywordCase::Lower => stc_fmt::KeywordCase::Lower,
+                        KeywordCase::Preserve => stc_fmt::KeywordCase::Preserve,
+                    },
+                    indent_width: indent,
+                    iec2: diagnostics.language.iec2,
+                },
+                diagnostics,
+            })
+        }
         Command::Run { common, args } => crate::run::run(&common.options(), args),
         Command::Check { common, files } => {
             let opts = common.options();

@@ -8,6 +8,7 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use stc_diagnostics::Code;
 
 use crate::driver::{self, MessageFormat, Options};
+use crate::manifest::{self, Manifest};
 use crate::sources;
 
 /// Exit statuses (spec/cli.md).
@@ -35,8 +36,8 @@ enum Command {
     Check {
         #[command(flatten)]
         common: Common,
-        /// Source files or directories (one project).
-        #[arg(required = true)]
+        /// Source files or directories (one project) [default: the
+        /// project of stc.toml].
         files: Vec<PathBuf>,
     },
     /// Compile the sources to another form.
@@ -49,7 +50,7 @@ enum Command {
         /// Output file or directory (text kinds go to stdout without it).
         #[arg(short = 'o', long = "output")]
         output: Option<PathBuf>,
-        #[arg(required = true)]
+        /// Source files or directories [default: the project of stc.toml].
         files: Vec<PathBuf>,
     },
     /// Compile and execute the sources in simulated time (or real time).
@@ -72,9 +73,18 @@ enum Command {
         indent: usize,
         #[command(flatten)]
         common: Common,
-        /// Source files or directories.
-        #[arg(required = true)]
+        /// Source files or directories [default: the sources and tests of
+        /// the project of stc.toml].
         files: Vec<PathBuf>,
+    },
+    /// Create a project: stc.toml, a first program and a test.
+    Init {
+        /// The project's folder (created if needed).
+        #[arg(default_value = ".")]
+        dir: PathBuf,
+        /// The project's name [default: the folder's name].
+        #[arg(long)]
+        name: Option<String>,
     },
     /// Explain a diagnostic code.
     Explain {
@@ -91,9 +101,13 @@ struct Common {
     /// `-W error`: treat warnings as errors.
     #[arg(short = 'W', value_enum, value_name = "error")]
     warnings: Vec<WarningLevel>,
-    /// Language edition.
-    #[arg(long, value_enum, default_value_t = Std::Iec3)]
-    std: Std,
+    /// Language edition [default: the manifest's, else iec3].
+    #[arg(long, value_enum)]
+    std: Option<Std>,
+    /// The project manifest to use [default: stc.toml in this folder or
+    /// above, when no source file is given].
+    #[arg(long = "manifest-path", value_name = "PATH")]
+    manifest_path: Option<PathBuf>,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug)]
@@ -131,17 +145,71 @@ enum Emit {
 }
 
 impl Common {
-    fn options(&self) -> Options {
-        Options {
+    /// The options, from the command line and the manifest (the command
+    /// line wins).
+    fn options_with(&self, manifest: Option<&Manifest>) -> Options {
+        let mut opts = Options {
             format: match self.message_format {
                 Format::Human => MessageFormat::Human,
                 Format::Json => MessageFormat::Json,
             },
             warnings_as_errors: !self.warnings.is_empty(),
             language: stc_pipeline::Options {
-                iec2: matches!(self.std, Std::Iec2),
+                iec2: match (self.std, manifest) {
+                    (Some(s), _) => matches!(s, Std::Iec2),
+                    (None, Some(m)) => m.edition == manifest::Edition::Iec2,
+                    (None, None) => false,
+                },
             },
+            ..Options::default()
+        };
+        if let Some(m) = manifest {
+            opts.warnings_as_errors |= m.warnings == manifest::WarningLevel::Deny;
+            for &c in &m.allow {
+                opts.allowed.insert(c);
+            }
+            for &c in &m.deny {
+                opts.denied.insert(c);
+            }
         }
+        opts
+    }
+
+    /// The manifest to use: the one named by `--manifest-path`, else, when
+    /// no file is given, the nearest `stc.toml`.
+    fn manifest(&self, files: &[PathBuf]) -> Result<Option<Manifest>, Outcome> {
+        let path = match &self.manifest_path {
+            Some(p) => p.clone(),
+            None if files.is_empty() => {
+                let cwd = std::env::current_dir().map_err(usage_error)?;
+                match manifest::find(&cwd) {
+                    Some(p) => p,
+                    None => {
+                        return Err(usage_error(
+                            "no source files given, and no stc.toml in this folder or above (`stc init` makes one)",
+                        ))
+                    }
+                }
+            }
+            None => return Ok(None),
+        };
+        manifest::load(&path).map(Some).map_err(usage_error)
+    }
+
+    /// The files of the project and the options: the files given, else the
+    /// manifest's sources (and its tests with `tests`).
+    fn project(
+        &self,
+        files: Vec<PathBuf>,
+        tests: bool,
+    ) -> Result<(Vec<PathBuf>, Options, Option<Manifest>), Outcome> {
+        let manifest = self.manifest(&files)?;
+        let opts = self.options_with(manifest.as_ref());
+        let files = match (&manifest, files.is_empty()) {
+            (Some(m), true) => m.files(tests).map_err(usage_error)?,
+            _ => files,
+        };
+        Ok((files, opts, manifest))
     }
 }
 
@@ -238,7 +306,10 @@ fn run(cli: Cli) -> Outcome {
             common,
             files,
         } => {
-            let diagnostics = common.options();
+            let (files, diagnostics, _) = match common.project(files, true) {
+                Ok(p) => p,
+                Err(o) => return o,
+            };
             crate::fmt_cmd::run(&crate::fmt_cmd::FmtArgs {
                 files,
                 check,
@@ -254,9 +325,30 @@ fn run(cli: Cli) -> Outcome {
                 diagnostics,
             })
         }
-        Command::Run { common, args } => crate::run::run(&common.options(), args),
+        Command::Init { dir, name } => match manifest::init(&dir, name.as_deref()) {
+            Ok(msg) => Outcome {
+                stdout: msg,
+                ..Outcome::default()
+            },
+            Err(e) => usage_error(e),
+        },
+        Command::Run { common, mut args } => {
+            let (files, opts, manifest) =
+                match common.project(std::mem::take(&mut args.files), false) {
+                    Ok(p) => p,
+                    Err(o) => return o,
+                };
+            args.files = files;
+            if let Some(m) = manifest {
+                args.apply_manifest(&m.run);
+            }
+            crate::run::run(&opts, args)
+        }
         Command::Check { common, files } => {
-            let opts = common.options();
+            let (files, opts, _) = match common.project(files, false) {
+                Ok(p) => p,
+                Err(o) => return o,
+            };
             match sources::load(&files) {
                 Ok((sm, diags)) => {
                     let a = stc_pipeline::analyse(sm, diags, &opts.language);
@@ -280,7 +372,10 @@ fn run(cli: Cli) -> Outcome {
             output,
             files,
         } => {
-            let opts = common.options();
+            let (files, opts, _) = match common.project(files, false) {
+                Ok(p) => p,
+                Err(o) => return o,
+            };
             if emit == Emit::Ast {
                 let parsed = match load_and_parse(&files, &opts) {
                     Ok(p) => p,

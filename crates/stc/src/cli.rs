@@ -77,6 +77,27 @@ enum Command {
         /// the project of stc.toml].
         files: Vec<PathBuf>,
     },
+    /// Run the unit tests: the PROGRAMs named TEST_* (see the README).
+    Test {
+        #[command(flatten)]
+        common: Common,
+        /// Run only the tests whose name contains this text (any case).
+        #[arg(long)]
+        filter: Option<String>,
+        /// Also write the results as JUnit XML to this file.
+        #[arg(long, value_name = "FILE")]
+        junit: Option<PathBuf>,
+        /// Simulated time per cycle [default: the manifest's, else the
+        /// GCD of the task intervals, or 10ms].
+        #[arg(long, value_name = "DURATION")]
+        tick: Option<String>,
+        /// Watchdog: VM instructions allowed per test per cycle.
+        #[arg(long = "max-steps", value_name = "N", default_value_t = stc_runtime::DEFAULT_MAX_STEPS)]
+        max_steps: u64,
+        /// Source files or directories [default: the sources and tests of
+        /// the project of stc.toml].
+        files: Vec<PathBuf>,
+    },
     /// Create a project: stc.toml, a first program and a test.
     Init {
         /// The project's folder (created if needed).
@@ -324,6 +345,30 @@ fn run(cli: Cli) -> Outcome {
                 },
                 diagnostics,
             })
+        }
+        Command::Test {
+            common,
+            filter,
+            junit,
+            tick,
+            max_steps,
+            files,
+        } => {
+            let (files, opts, manifest) = match common.project(files, true) {
+                Ok(p) => p,
+                Err(o) => return o,
+            };
+            let tick = tick.or_else(|| manifest.and_then(|m| m.run.tick));
+            crate::test_cmd::run(
+                &crate::test_cmd::TestArgs {
+                    files,
+                    filter,
+                    junit,
+                    tick,
+                    max_steps,
+                },
+                &opts,
+            )
         }
         Command::Init { dir, name } => match manifest::init(&dir, name.as_deref()) {
             Ok(msg) => Outcome {

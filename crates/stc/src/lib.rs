@@ -11,3 +11,4 @@ pub mod manifest;
 pub mod output;
 pub mod run;
 pub mod sources;
+pub mod test_cmd;

@@ -347,20 +347,28 @@ END_FUNCTION
 ";
 
 const TEST_ST: &str = "\
-(* Tests are PROGRAMs named TEST_*: `stc test` runs each one on its own
-   (see `stc test --help`). *)
+(* Tests are PROGRAMs whose names start with TEST_: `stc test` runs each one
+   alone, for one cycle or as many as TEST_CYCLES asks for. *)
 PROGRAM TEST_Increment
-    ASSERT_EQ_INT(Increment(1), 2, 'one more');
-    ASSERT_EQ_INT(Increment(32767), 32767, 'stops at the largest INT');
+    ASSERT_EQ_INT(2, Increment(1), 'one more');
+    ASSERT_EQ_INT(32767, Increment(32767), 'stops at the largest INT');
 END_PROGRAM
 
-PROGRAM TEST_Main_counts_cycles
+(* Virtual time: cycle k runs at (k - 1) * tick (stc.toml: 10ms). *)
+PROGRAM TEST_Timer_after_50ms
     VAR
-        main : Main;
+        t : TON;
+        cycle : INT;
     END_VAR
-    main();
-    main();
-    ASSERT_EQ_INT(main.count, 2, 'two cycles, two counts');
+    TEST_CYCLES(6);
+    cycle := cycle + 1;
+    t(IN := TRUE, PT := T#50ms);
+    IF cycle < 6 THEN
+        ASSERT_FALSE(t.Q, 'not yet');
+    ELSE
+        ASSERT_TRUE(t.Q, 'done at T#50ms');
+        ASSERT_EQ_TIME(T#50ms, t.ET, 'elapsed');
+    END_IF;
 END_PROGRAM
 ";
 

@@ -135,6 +135,7 @@ struct Common {
 enum Format {
     Human,
     Json,
+    Sarif,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug)]
@@ -173,6 +174,7 @@ impl Common {
             format: match self.message_format {
                 Format::Human => MessageFormat::Human,
                 Format::Json => MessageFormat::Json,
+                Format::Sarif => MessageFormat::Sarif,
             },
             warnings_as_errors: !self.warnings.is_empty(),
             language: stc_pipeline::Options {

@@ -9,6 +9,8 @@ pub enum MessageFormat {
     #[default]
     Human,
     Json,
+    /// One SARIF 2.1.0 document for the whole run.
+    Sarif,
 }
 
 /// Options shared by every subcommand that analyses sources.
@@ -69,6 +71,10 @@ pub fn failed(diags: &[Diagnostic], opts: &Options) -> bool {
 pub fn render(diags: &[Diagnostic], sources: &SourceMap, opts: &Options) -> String {
     let mut sorted: Vec<&Diagnostic> = diags.iter().collect();
     sorted.sort_by_key(|d| d.span.lo);
+    if opts.format == MessageFormat::Sarif {
+        let shown: Vec<Diagnostic> = sorted.iter().filter_map(|d| shown(d, opts)).collect();
+        return stc_diagnostics::render_sarif(&shown, sources, env!("CARGO_PKG_VERSION"));
+    }
     let mut out = String::new();
     for d in sorted {
         let Some(d) = shown(d, opts) else {
@@ -83,6 +89,7 @@ pub fn render(diags: &[Diagnostic], sources: &SourceMap, opts: &Options) -> Stri
                 out.push_str(&render_json(&d, sources));
                 out.push('\n');
             }
+            MessageFormat::Sarif => {}
         }
     }
     out

@@ -9,9 +9,11 @@
 mod codes;
 mod diagnostic;
 mod render;
+mod sarif;
 mod span;
 
 pub use codes::{Code, CodeSeverity};
 pub use diagnostic::{Diagnostic, Label, Severity};
 pub use render::{render_human, render_json};
+pub use sarif::render_sarif;
 pub use span::{FileId, LineCol, SourceFile, SourceMap, Span};

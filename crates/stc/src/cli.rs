@@ -98,6 +98,12 @@ enum Command {
         /// the project of stc.toml].
         files: Vec<PathBuf>,
     },
+    /// Run the language server on stdin/stdout (for editors).
+    Lsp {
+        /// Language edition [default: iec3].
+        #[arg(long, value_enum)]
+        std: Option<Std>,
+    },
     /// Create a project: stc.toml, a first program and a test.
     Init {
         /// The project's folder (created if needed).
@@ -245,6 +251,13 @@ pub fn main(args: Vec<OsString>) -> u8 {
             return if e.use_stderr() { EXIT_USAGE } else { EXIT_OK };
         }
     };
+    // The language server streams on stdin/stdout itself: it must run
+    // before the streams are locked for the collected outcome.
+    if let Command::Lsp { std } = &cli.command {
+        return crate::lsp_cmd::run(stc_pipeline::Options {
+            iec2: matches!(std, Some(Std::Iec2)),
+        });
+    }
     let mut out = std::io::stdout().lock();
     let mut err = std::io::stderr().lock();
     let outcome = stc_pipeline::with_big_stack(move || run(cli));
@@ -372,6 +385,7 @@ fn run(cli: Cli) -> Outcome {
                 &opts,
             )
         }
+        Command::Lsp { .. } => usage_error("stc lsp serves on stdin/stdout: run it as a command"),
         Command::Init { dir, name } => match manifest::init(&dir, name.as_deref()) {
             Ok(msg) => Outcome {
                 stdout: msg,

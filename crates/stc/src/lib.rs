@@ -7,6 +7,7 @@
 pub mod cli;
 pub mod driver;
 pub mod fmt_cmd;
+pub mod lsp_cmd;
 pub mod manifest;
 pub mod output;
 pub mod run;

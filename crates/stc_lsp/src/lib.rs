@@ -161,8 +161,11 @@ impl Server {
         let by_file = project.diagnostics_by_uri();
         let mut out = Vec::new();
         let mut published = Vec::new();
+        let mut seen = std::collections::BTreeSet::new();
+        // Every file, and the ones that had diagnostics before (to clear
+        // them), once each.
         for uri in self.files.keys().chain(self.published.iter()) {
-            if published.contains(uri) {
+            if !seen.insert(uri) {
                 continue;
             }
             let Ok(u) = uri.parse::<lsp_types::Uri>() else {

@@ -6,6 +6,10 @@
 
 pub mod cli;
 pub mod driver;
+pub mod fmt_cmd;
+pub mod lsp_cmd;
+pub mod manifest;
 pub mod output;
 pub mod run;
 pub mod sources;
+pub mod test_cmd;

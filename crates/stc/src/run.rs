@@ -29,8 +29,8 @@ pub const EXIT_FAULT: u8 = 3;
 /// The options of `stc run` (spec/cli.md), after the diagnostics options.
 #[derive(Args, Debug)]
 pub struct RunArgs {
-    /// Source files or directories (one project), or one `.stbc` file.
-    #[arg(required = true)]
+    /// Source files or directories (one project), or one `.stbc` file
+    /// [default: the project of stc.toml].
     pub files: Vec<PathBuf>,
     /// Run this CONFIGURATION.
     #[arg(long, value_name = "NAME", conflicts_with = "program")]
@@ -87,6 +87,22 @@ pub enum ReportFormat {
     Text,
     Json,
     Csv,
+}
+
+impl RunArgs {
+    /// Takes what the command line left open from the manifest's `[run]`.
+    pub fn apply_manifest(&mut self, run: &crate::manifest::RunSettings) {
+        if self.config.is_none() && self.program.is_none() {
+            self.config = run.config.clone();
+            self.program = run.program.clone();
+        }
+        if self.tick.is_none() {
+            self.tick = run.tick.clone();
+        }
+        if self.cycles.is_none() {
+            self.cycles = run.cycles;
+        }
+    }
 }
 
 fn usage_error(msg: impl std::fmt::Display) -> Outcome {

@@ -95,6 +95,7 @@ fn jit_and_vm_agree_on_every_run_case() {
     });
     let failures = failures.into_inner().unwrap();
     let compared = compared.into_inner().unwrap();
+    eprintln!("{compared} cases compared, {} differ", failures.len());
     assert!(
         failures.is_empty(),
         "{} of {} cases differ:\n\n{}",

@@ -100,7 +100,9 @@ struct StdDesc {
 pub(crate) struct Code {
     /// Owns the machine code (never freed while the engine lives).
     _module: JITModule,
-    /// Descriptors of generic operations, pointed to by the code.
+    /// Descriptors of generic operations, pointed to by the code (boxed:
+    /// their addresses must not move when the vector grows).
+    #[allow(clippy::vec_box)]
     _stds: Vec<Box<StdDesc>>,
 }
 
@@ -249,7 +251,7 @@ pub(crate) fn compile(m: &Module) -> Result<Output, Error> {
                 .ok_or_else(|| internal("a frame variable outside its frame"))?;
             dst.copy_from_slice(&bytes);
         }
-        while consts.len() % 8 != 0 {
+        while !consts.len().is_multiple_of(8) {
             consts.push(0);
         }
         let at = const_base + consts.len() as u64;
@@ -451,6 +453,8 @@ struct Globals<'a, 'm> {
     d: &'a mut Builder<'m>,
     consts: Vec<u8>,
     const_base: u64,
+    /// (Boxed: the code points to them.)
+    #[allow(clippy::vec_box)]
     stds: Vec<Box<StdDesc>>,
     sites: Vec<(String, String, u32, u32)>,
     site_map: FxHashMap<(u32, u32, u32), u32>,
@@ -475,6 +479,9 @@ struct PlaceAt {
     addr: CVal,
     part: Option<(u32, AddrSize, u32)>,
 }
+
+/// A bounds check of an index: the index (signed 64-bit), its bounds.
+type IndexCheck = (CVal, i64, i64);
 
 /// Whether a conversion between scalars of this type is the VM's plain
 /// numeric `cvt`.
@@ -775,7 +782,7 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
     }
 
     /// A value as a native pointer (a scalar spilled to a stack slot).
-    fn to_ptr(&mut self, v: V) -> CVal {
+    fn spill(&mut self, v: V) -> CVal {
         match v {
             V::M(p) => p,
             V::S(x) => {
@@ -797,7 +804,7 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         self.g.stds.push(desc);
         let argv = self.stack_slot(8 * (args.len() as u32 + 1));
         for (i, &(v, _)) in args.iter().enumerate() {
-            let p = self.to_ptr(v);
+            let p = self.spill(v);
             self.b.ins().store(MemFlags::new(), p, argv, 8 * i as i32);
         }
         let (re, cap) = self.std_arg(result);
@@ -835,8 +842,11 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                     let v = self.expr(value)?;
                     self.store(&pl, v, value.ty, place.ty)?;
                 } else {
+                    let (pl, pending) = self.place_lazy(place)?;
                     let v = self.expr(value)?;
-                    let pl = self.place(place)?;
+                    if let Some(c) = pending {
+                        self.index_check(c);
+                    }
                     self.store(&pl, v, value.ty, place.ty)?;
                 }
             }
@@ -998,8 +1008,36 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         }
     }
 
+    /// A place with every bounds check done.
     fn place(&mut self, p: &Place) -> Result<PlaceAt, Error> {
+        let (pl, pending) = self.place_lazy(p)?;
+        if let Some(c) = pending {
+            self.index_check(c);
+        }
+        Ok(pl)
+    }
+
+    fn index_check(&mut self, (i, lo, hi): IndexCheck) {
+        let below = self.b.ins().icmp_imm(IntCC::SignedLessThan, i, lo);
+        let above = self.b.ins().icmp_imm(IntCC::SignedGreaterThan, i, hi);
+        let out = self.b.ins().bor(below, above);
+        self.fault_if(out, FaultKind::IndexOutOfBounds);
+    }
+
+    /// A place, and the bounds check the VM leaves to the load or store
+    /// of the element (`ldelem`/`stelem`): the one index of an array at a
+    /// fixed place. The other checks are made where the VM makes them (an
+    /// index is checked when the next one has been evaluated, or at once
+    /// behind a reference), so faults come in the VM's order.
+    fn place_lazy(&mut self, p: &Place) -> Result<(PlaceAt, Option<IndexCheck>), Error> {
         let m = self.g.m;
+        let mut pending: Option<IndexCheck> = None;
+        // Whether the address so far is a fixed place (not behind a
+        // reference or a checked index).
+        let mut fixed = match &p.root {
+            Root::Var(v) => m.pous[self.p].vars[*v].storage != Storage::Ref,
+            _ => true,
+        };
         let mut addr = match &p.root {
             Root::Var(v) => self.var_addr(*v),
             Root::Global(g) => {
@@ -1070,10 +1108,15 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                             let i = self.index_value(e)?;
                             let lo = (*lo).clamp(i64::MIN as i128, i64::MAX as i128) as i64;
                             let hi = (*hi).clamp(i64::MIN as i128, i64::MAX as i128) as i64;
-                            let below = self.b.ins().icmp_imm(IntCC::SignedLessThan, i, lo);
-                            let above = self.b.ins().icmp_imm(IntCC::SignedGreaterThan, i, hi);
-                            let out = self.b.ins().bor(below, above);
-                            self.fault_if(out, FaultKind::IndexOutOfBounds);
+                            if fixed {
+                                pending = Some((i, lo, hi));
+                                fixed = false;
+                            } else {
+                                if let Some(c) = pending.take() {
+                                    self.index_check(c);
+                                }
+                                self.index_check((i, lo, hi));
+                            }
                             let rel = self.b.ins().iadd_imm(i, lo.wrapping_neg());
                             let mult = mults[k].clamp(0, i64::MAX as i128) as i64;
                             let off = self.b.ins().imul_imm(rel, mult);
@@ -1088,7 +1131,7 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                 }
             }
         }
-        Ok(PlaceAt { addr, part })
+        Ok((PlaceAt { addr, part }, pending))
     }
 
     /// An integer index as a signed 64-bit value.
@@ -1097,10 +1140,10 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
             .scalar(e.ty)
             .ok_or_else(|| internal("an index that is not an integer"))?;
         let v = self.expr_s(e)?;
-        Ok(self.to_i64(v, t))
+        Ok(self.widen_i64(v, t))
     }
 
-    fn to_i64(&mut self, v: CVal, t: ElemType) -> CVal {
+    fn widen_i64(&mut self, v: CVal, t: ElemType) -> CVal {
         match elem_size(t) {
             8 => v,
             _ if is_signed(t) => self.b.ins().sextend(I64, v),
@@ -1197,7 +1240,7 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         match self.g.m.types.kind(pt) {
             TypeKind::String { wide, len } => {
                 let (wide, len) = (*wide, *len);
-                let src = self.to_ptr(v);
+                let src = self.spill(v);
                 let f = self.func(self.g.copy_fn);
                 let cap = self.iconst(I32, i64::from(len));
                 let unit = self.iconst(I32, if wide { 2 } else { 1 });
@@ -1332,7 +1375,7 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         if !ok {
             return Err(Error::Unsupported(format!("the constant {v:?}")));
         }
-        while self.g.consts.len() % 8 != 0 {
+        while !self.g.consts.len().is_multiple_of(8) {
             self.g.consts.push(0);
         }
         let at = self.g.const_base + self.g.consts.len() as u64;
@@ -1411,7 +1454,7 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                 }
             }
         } else {
-            let i = self.to_i64(x, f);
+            let i = self.widen_i64(x, f);
             let unsigned64 = !is_signed(f) && elem_size(f) == 8;
             match t {
                 ElemType::Real | ElemType::Lreal => {

@@ -275,6 +275,9 @@ pub(crate) fn compile(m: &Module) -> Result<Output, Error> {
         f.set(k, v)
             .map_err(|e| internal(format!("cranelift flag {k}: {e}")))
     };
+    // The IR verifier is for Cranelift's own development: its cost grows
+    // with every function, and the translation here is tested instead.
+    set(&mut flags, "enable_verifier", "false")?;
     set(&mut flags, "opt_level", "speed")?;
     set(&mut flags, "use_colocated_libcalls", "false")?;
     set(&mut flags, "is_pic", "false")?;
@@ -313,14 +316,22 @@ pub(crate) fn compile(m: &Module) -> Result<Output, Error> {
     };
     let std_fn = decl(&mut module, "stc_jit_std", Linkage::Import, &std_sig)?;
     let copy_fn = decl(&mut module, "stc_jit_strcopy", Linkage::Import, &copy_sig)?;
+    // Only what can run is compiled: the programs and what they call (a
+    // project's library of function blocks nobody instantiates costs no
+    // compile time).
+    let reachable = reachable(m);
     let mut ids = Vec::with_capacity(m.pous.len());
     for p in m.pous.ids() {
-        ids.push(decl(
-            &mut module,
-            &format!("pou{}", p.index()),
-            Linkage::Local,
-            &body_sig,
-        )?);
+        ids.push(if reachable[p.index()] {
+            Some(decl(
+                &mut module,
+                &format!("pou{}", p.index()),
+                Linkage::Local,
+                &body_sig,
+            )?)
+        } else {
+            None
+        });
     }
 
     // The stack each POU needs: its frame, then its deepest callee's.
@@ -350,13 +361,16 @@ pub(crate) fn compile(m: &Module) -> Result<Output, Error> {
     let mut fctx = FunctionBuilderContext::new();
     let mut ctx = module.make_context();
     for p in m.pous.ids() {
+        let Some(id) = g.ids[p.index()] else {
+            continue;
+        };
         ctx.func.signature = body_sig.clone();
         {
             let b = FunctionBuilder::new(&mut ctx.func, &mut fctx);
             Fx::new(&mut g, &mut module, b, p).body()?;
         }
         module
-            .define_function(g.ids[p.index()], &mut ctx)
+            .define_function(id, &mut ctx)
             .map_err(|e| internal(format!("cranelift: {e:?}")))?;
         module.clear_context(&mut ctx);
     }
@@ -366,8 +380,8 @@ pub(crate) fn compile(m: &Module) -> Result<Output, Error> {
     let bodies = g
         .ids
         .iter()
-        .map(|&id| {
-            let f = module.get_finalized_function(id);
+        .map(|id| {
+            let f = module.get_finalized_function((*id)?);
             // SAFETY: the function was defined with `body_sig`, which is
             // the C ABI signature of `Body`.
             Some(unsafe { std::mem::transmute::<*const u8, Body>(f) })
@@ -402,6 +416,33 @@ pub(crate) fn compile(m: &Module) -> Result<Output, Error> {
             _stds: stds,
         },
     })
+}
+
+/// Which POUs can run: the programs, and every POU they call, directly or
+/// not.
+fn reachable(m: &Module) -> Vec<bool> {
+    let mut seen = vec![false; m.pous.len()];
+    let mut work: Vec<usize> = m
+        .pous
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| p.kind == PouKind::Program)
+        .map(|(i, _)| i)
+        .collect();
+    for &i in &work {
+        seen[i] = true;
+    }
+    while let Some(i) = work.pop() {
+        stc_ir::visit::calls(&m.pous[PouId::new(i)].body, &mut |c| {
+            if let Some(s) = seen.get_mut(c.index()) {
+                if !*s {
+                    *s = true;
+                    work.push(c.index());
+                }
+            }
+        });
+    }
+    seen
 }
 
 /// The stack of frames every POU needs with its calls (calls are acyclic:
@@ -458,7 +499,8 @@ struct Globals<'a, 'm> {
     stds: Vec<Box<StdDesc>>,
     sites: Vec<(String, String, u32, u32)>,
     site_map: FxHashMap<(u32, u32, u32), u32>,
-    ids: Vec<FuncId>,
+    /// By POU: its function, when it can run.
+    ids: Vec<Option<FuncId>>,
     std_fn: FuncId,
     copy_fn: FuncId,
     frame_size: Vec<u64>,
@@ -1616,14 +1658,17 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         self.b.ins().iadd_imm(self.fp, own as i64)
     }
 
-    fn call_body(&mut self, callee: PouId, this: CVal, frame: CVal) {
+    fn call_body(&mut self, callee: PouId, this: CVal, frame: CVal) -> Result<(), Error> {
         self.step();
-        let f = self.func(self.g.ids[callee.index()]);
+        let id =
+            self.g.ids[callee.index()].ok_or_else(|| internal("a call of a POU not compiled"))?;
+        let f = self.func(id);
         let call = self.b.ins().call(f, &[self.ctx, self.base, this, frame]);
         let st = self.b.inst_results(call)[0];
         let cont = self.b.create_block();
         self.b.ins().brif(st, self.prop_block, &[], cont, &[]);
         self.b.switch_to_block(cont);
+        Ok(())
     }
 
     fn call_fn(
@@ -1674,7 +1719,7 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
             self.b.ins().store(MemFlags::new(), a32, p, 0);
         }
         let this = self.iconst(I64, 0);
-        self.call_body(func, this, cf);
+        self.call_body(func, this, cf)?;
         for o in outputs {
             let var = &callee.vars[o.var];
             let addr = self.b.ins().iadd_imm(cf, i64::from(lay.offsets[o.var]));
@@ -1745,7 +1790,7 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
             self.b.ins().store(MemFlags::new(), a32, sp, 0);
         }
         let cf = self.callee_frame();
-        self.call_body(fb, inst, cf);
+        self.call_body(fb, inst, cf)?;
         for o in outputs {
             let var = fbp.var(o.var);
             let addr = self.b.ins().iadd_imm(inst, i64::from(lay.offsets[o.var]));

@@ -98,8 +98,8 @@ struct StdDesc {
 
 /// The compiled code and what it points to.
 pub(crate) struct Code {
-    /// Owns the machine code (never freed while the engine lives).
-    _module: JITModule,
+    /// Owns the machine code (freed when the engine is dropped).
+    module: Option<JITModule>,
     /// Descriptors of generic operations, pointed to by the code (boxed:
     /// their addresses must not move when the vector grows).
     #[allow(clippy::vec_box)]
@@ -113,6 +113,17 @@ pub(crate) struct Output {
     pub bodies: Vec<Option<Body>>,
     pub sites: Vec<(String, String, u32, u32)>,
     pub code: Code,
+}
+
+impl Drop for Code {
+    fn drop(&mut self) {
+        if let Some(m) = self.module.take() {
+            // SAFETY: the code is dropped with its engine (the last field
+            // of `JitEngine`), and nothing keeps a pointer to a compiled
+            // function beyond the engine's `bodies`.
+            unsafe { m.free_memory() };
+        }
+    }
 }
 
 /// The size of a byte slice a value of `(e, cap)` occupies.
@@ -412,7 +423,7 @@ pub(crate) fn compile(m: &Module) -> Result<Output, Error> {
         bodies,
         sites,
         code: Code {
-            _module: module,
+            module: Some(module),
             _stds: stds,
         },
     })

@@ -408,8 +408,12 @@ fn backend_choices_and_failures_are_reported() {
         String::from_utf8_lossy(&c.stdout),
         "cycle 3 (T#20ms)\n  P.n = 3\n"
     );
-    // Back ends that do not exist yet.
-    for b in ["jit", "netlist"] {
+    // The JIT prints the same bytes.
+    let jit = stc(&["run", &f, "--cycles", "3", "--backend", "jit"], "gcc");
+    assert_eq!(jit.status.code(), Some(0), "{jit:?}");
+    assert_eq!(jit.stdout, vm.stdout);
+    // A back end that does not exist yet.
+    for b in ["netlist"] {
         let o = stc(&["run", &f, "--backend", b], "gcc");
         assert_eq!(o.status.code(), Some(2), "{o:?}");
         assert!(String::from_utf8_lossy(&o.stderr).contains(&format!(

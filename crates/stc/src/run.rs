@@ -68,8 +68,9 @@ pub struct RunArgs {
     /// Pace the cycles with the wall clock (stop with Ctrl-C).
     #[arg(long)]
     pub realtime: bool,
-    /// What runs the program: the bytecode VM, or the generated C built
-    /// with the system C compiler (`$CC`, else `cc`) and loaded.
+    /// What runs the program: the bytecode VM, native code compiled
+    /// in-process (Cranelift), or the generated C built with the system C
+    /// compiler (`$CC`, else `cc`) and loaded.
     #[arg(long, value_enum, default_value_t = Backend::Vm)]
     pub backend: Backend,
 }
@@ -115,12 +116,6 @@ fn usage_error(msg: impl std::fmt::Display) -> Outcome {
 
 /// Runs `stc run`.
 pub fn run(opts: &Options, args: RunArgs) -> Outcome {
-    if args.backend == Backend::Jit {
-        return usage_error(format!(
-            "--backend {}: this back end is not implemented yet (vm, c and netlist are)",
-            format!("{:?}", args.backend).to_lowercase()
-        ));
-    }
     if args.backend == Backend::Netlist && args.config.is_some() {
         return usage_error(
             "--backend netlist runs one PROGRAM (choose it with --program), not a configuration",
@@ -236,6 +231,27 @@ fn load(
             }),
             Err(e) => Err(usage_error(e)),
         };
+    }
+    let mut rendered = rendered;
+    if backend == Backend::Jit {
+        match stc_engine_jit::JitEngine::build(&module) {
+            Ok(engine) => return Ok((Box::new(engine), rendered)),
+            // Where the JIT cannot run, the VM runs the program: never a
+            // failure (too large a program is reported by the VM below).
+            Err(stc_engine_jit::Error::Unsupported(why)) => {
+                rendered.push_str(&format!("note: --backend jit: {why}; running on the VM\n"));
+            }
+            Err(stc_engine_jit::Error::Diagnostics(_)) => {}
+            Err(e @ stc_engine_jit::Error::Internal(_)) => {
+                return Err(Outcome {
+                    stderr: format!(
+                        "{rendered}error: {e} (compiling for the JIT; this is a bug in stc)\n"
+                    ),
+                    status: crate::cli::EXIT_INTERNAL,
+                    ..Outcome::default()
+                })
+            }
+        }
     }
     match stc_vm::compile(&module) {
         Ok(image) => Ok((Box::new(Machine::new(Arc::new(image))), rendered)),

@@ -161,6 +161,21 @@ fn main() {
             a
         });
         report("check", n, bytes, t, peak.saturating_sub(bytes));
+        // The back ends from the lowered module: the bytecode compiler and
+        // the JIT (Cranelift, every POU to native code).
+        let module = stc_pipeline::compile_text("gen.st", &src, &stc_pipeline::Options::default())
+            .module
+            .expect("the generated project compiles");
+        let (t, peak) = measure(Duration::from_secs(2), || {
+            stc_vm::compile(&module).expect("the VM compiles it")
+        });
+        report("vm compile", n, bytes, t, peak);
+        let (t, peak) = measure(Duration::from_secs(2), || {
+            stc_engine_jit::JitEngine::build(&module)
+                .map_err(|e| e.to_string())
+                .expect("the JIT compiles it")
+        });
+        report("jit compile", n, bytes, t, peak);
     }
 }
 

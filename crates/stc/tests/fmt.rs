@@ -30,6 +30,33 @@ fn options_for(text: &str) -> stc_fmt::Options {
     }
 }
 
+/// Files the formatter does not lay out yet, with the reason: it must
+/// refuse them (`Unsafe`: the check caught it), never write them wrong.
+/// The formatter was written before Instruction List bodies and the
+/// 3rd-edition words accepted as names (W0009) were merged.
+const NOT_YET: &[(&str, &str)] = &[
+    (
+        "tests/conformance/run/il/logic.st",
+        "IL bodies are not laid out yet",
+    ),
+    (
+        "tests/syntax/ok/il_every_operator.st",
+        "IL bodies are not laid out yet",
+    ),
+    (
+        "tests/syntax/ok/il_function_call_and_amp.st",
+        "IL bodies are not laid out yet",
+    ),
+    (
+        "tests/conformance/check/realcode/cascade_reserved_word_variable.st",
+        "3rd-edition words as names (W0009) change case and meaning",
+    ),
+    (
+        "tests/syntax/err/dialect_third_edition_names.st",
+        "3rd-edition words as names (W0009) change case and meaning",
+    ),
+];
+
 #[test]
 fn every_source_file_formats_safely_and_idempotently() {
     let root = common::data_dir().join("..");
@@ -55,7 +82,13 @@ fn every_source_file_formats_safely_and_idempotently() {
             };
             (first, second)
         });
+        let not_yet = NOT_YET.iter().any(|(p, _)| f.ends_with(p));
         match result {
+            (Err(stc_fmt::FormatError::Unsafe(_)), _) if not_yet => {}
+            (_, _) if not_yet => failures.push(format!(
+                "{}: listed in NOT_YET but no longer refused: take it off the list",
+                f.display()
+            )),
             (Ok(_), Some(Ok(true))) => formatted += 1,
             (Ok(_), _) => failures.push(format!("{}: not idempotent", f.display())),
             (Err(stc_fmt::FormatError::Syntax(d)), _) if !must_format(f) => {

@@ -77,10 +77,17 @@ pub const MAX_ERRORS_PER_FILE: usize = 50;
 /// [`MAX_ERRORS_PER_FILE`] errors of each file (saying how many more there
 /// are) and ends with the summary line (`2 errors, 1 warning`).
 pub fn render(diags: &[Diagnostic], sources: &SourceMap, opts: &Options) -> String {
-    if opts.format != MessageFormat::Human || diags.is_empty() {
+    if opts.format != MessageFormat::Human {
         return render_each(diags, sources, opts);
     }
-    let severe = |d: &Diagnostic| d.is_error() || opts.warnings_as_errors;
+    // What the options show (allowed warnings left out, denied ones
+    // errors): the cap and the summary count these.
+    let diags: Vec<Diagnostic> = diags.iter().filter_map(|d| shown(d, opts)).collect();
+    let diags = diags.as_slice();
+    if diags.is_empty() {
+        return String::new();
+    }
+    let severe = |d: &Diagnostic| d.is_error();
     let file_of = |d: &Diagnostic| {
         sources
             .file_of(d.span.lo)
@@ -123,7 +130,7 @@ pub fn render(diags: &[Diagnostic], sources: &SourceMap, opts: &Options) -> Stri
 pub fn summary(diags: &[Diagnostic], opts: &Options) -> String {
     let errors = diags
         .iter()
-        .filter(|d| d.is_error() || opts.warnings_as_errors)
+        .filter(|d| shown(d, opts).is_some_and(|d| d.is_error()))
         .count();
     let warnings = diags.len() - errors;
     let count = |n: usize, one: &str| {

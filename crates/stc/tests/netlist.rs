@@ -666,7 +666,7 @@ fn run_cases_print_the_same_bytes_on_the_vm_and_the_netlist() {
         };
         let vm = run("vm");
         let nl = run("netlist");
-        if nl.status == 1 && nl.stderr.contains("error[E10") {
+        if nl.status == 1 && nl.stderr.contains("error[E11") {
             other.push(format!("{rel}: refused"));
             continue;
         }

@@ -220,7 +220,9 @@ fn load(
                 ..Outcome::default()
             }),
             Err(e @ stc_engine_netlist::Error::Model(_)) => Err(Outcome {
-                stderr: format!("{rendered}internal error: {e}\n"),
+                stderr: format!(
+                    "{rendered}error: {e} (building the program model; a bug in stc)\n"
+                ),
                 status: crate::cli::EXIT_INTERNAL,
                 ..Outcome::default()
             }),

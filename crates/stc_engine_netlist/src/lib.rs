@@ -78,7 +78,7 @@ impl NetlistEngine {
         let layouts = stc_ir::layout::Layouts::compute(module)
             .map_err(|d| Error::Model(format!("{} layout errors", d.len())))?;
         let data =
-            stc_ir::model::build(module, &layouts).map_err(|e| Error::Model(format!("{e:?}")))?;
+            stc_ir::model::build(module, &layouts).map_err(|e| Error::Model(e.to_string()))?;
         NetlistEngine::load(Arc::new(data.model), data.init, doc)
     }
 

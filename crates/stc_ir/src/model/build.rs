@@ -24,6 +24,18 @@ pub enum ModelError {
     Internal(String),
 }
 
+impl std::fmt::Display for ModelError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ModelError::Diagnostics(d) => match d.first() {
+                Some(first) => write!(f, "{}", first.message),
+                None => write!(f, "the program does not fit the memory model"),
+            },
+            ModelError::Internal(what) => write!(f, "internal error: {what}"),
+        }
+    }
+}
+
 fn internal(what: impl Into<String>) -> ModelError {
     ModelError::Internal(what.into())
 }

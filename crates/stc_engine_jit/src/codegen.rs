@@ -22,7 +22,7 @@ use cranelift_codegen::ir::{
 use cranelift_codegen::isa::TargetFrontendConfig;
 use cranelift_codegen::settings::{self, Configurable};
 use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
-use cranelift_jit::{JITBuilder, JITModule};
+use cranelift_jit::{ArenaMemoryProvider, JITBuilder, JITModule};
 use cranelift_module::{FuncId, Linkage, Module as _};
 use rustc_hash::FxHashMap;
 use stc_diagnostics::Diagnostic;
@@ -37,6 +37,10 @@ use stc_syntax::token::ElemType;
 use stc_values::{BinOp, UnOp, Value};
 
 use crate::{Body, CTX_KIND, CTX_NOW, CTX_SITE, CTX_STEPS};
+
+/// The address space reserved for one engine's code (never committed
+/// beyond what the code uses): PC-relative calls reach 2 GiB.
+const JIT_CODE_RESERVE: usize = 1 << 30;
 
 /// Why a module was not compiled.
 #[derive(Debug)]
@@ -298,6 +302,14 @@ pub(crate) fn compile(m: &Module) -> Result<Output, Error> {
         .finish(settings::Flags::new(flags))
         .map_err(|e| Error::Unsupported(format!("no JIT for this host: {e}")))?;
     let mut jb = JITBuilder::with_isa(isa, cranelift_module::default_libcall_names());
+    // All the code of one engine in one reserved region (address space
+    // only, committed as it is used): calls between the program's functions
+    // are 32-bit PC-relative, and with the default provider two functions
+    // of a large program could land more than 2 GiB apart (found by the
+    // random differential: a panic in cranelift-jit's relocation).
+    let arena = ArenaMemoryProvider::new_with_size(JIT_CODE_RESERVE)
+        .map_err(|e| Error::Unsupported(format!("no memory for JIT code: {e}")))?;
+    jb.memory_provider(Box::new(arena));
     jb.symbol("stc_jit_std", jit_std as *const u8);
     jb.symbol("stc_jit_strcopy", jit_strcopy as *const u8);
     let mut module = JITModule::new(jb);

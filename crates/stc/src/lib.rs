@@ -5,6 +5,7 @@
 //! the same functions the command uses.
 
 pub mod cli;
+pub mod controller;
 pub mod driver;
 pub mod output;
 pub mod run;

@@ -15,11 +15,12 @@ use clap::{Args, ValueEnum};
 use stc_engine_c::{CEngine, Toolchain};
 use stc_runtime::path::split_list;
 use stc_runtime::realtime::{RealTime, WallClock};
-use stc_runtime::Engine;
+use stc_runtime::{Between, Engine};
 use stc_runtime::{Format, Report, Simulation, Stimulus, Unpaced, DEFAULT_MAX_STEPS};
 use stc_vm::Machine;
 
 use crate::cli::{Outcome, EXIT_ERRORS, EXIT_OK, EXIT_USAGE};
+use crate::controller::{All, RetainFile};
 use crate::driver::{self, Options};
 use crate::sources;
 
@@ -68,6 +69,18 @@ pub struct RunArgs {
     /// Pace the cycles with the wall clock (stop with Ctrl-C).
     #[arg(long)]
     pub realtime: bool,
+    /// Real time: keep the RETAIN variables in FILE, restored at start
+    /// (warm start) and saved crash-safely at cycle ends.
+    #[arg(long, value_name = "FILE", requires = "realtime")]
+    pub retain: Option<PathBuf>,
+    /// How often the retained variables are saved, rounded up to whole
+    /// ticks [default: after every cycle].
+    #[arg(long = "retain-interval", value_name = "DURATION", requires = "retain")]
+    pub retain_interval: Option<String>,
+    /// Cold start: do not restore the retained variables (they are still
+    /// saved).
+    #[arg(long, requires = "retain")]
+    pub cold: bool,
     /// What runs the program: the bytecode VM, or the generated C built
     /// with the system C compiler (`$CC`, else `cc`) and loaded.
     #[arg(long, value_enum, default_value_t = Backend::Vm)]
@@ -216,6 +229,17 @@ fn configure_and_run(image: Box<dyn Engine>, args: &RunArgs) -> Outcome {
             }
         }
     };
+    let retain_interval = match args.retain_interval.as_deref().map(|t| {
+        stc_runtime::parse_tick(t).map_err(|_| {
+            format!(
+                "--retain-interval {t}: expected a duration longer than zero such as 100ms or T#1s"
+            )
+        })
+    }) {
+        None => None,
+        Some(Ok(ns)) => Some(ns),
+        Some(Err(e)) => return usage_error(e),
+    };
     let tick_ns = match args
         .tick
         .as_deref()
@@ -270,7 +294,23 @@ fn configure_and_run(image: Box<dyn Engine>, args: &RunArgs) -> Outcome {
         ReportFormat::Json => Format::Json,
     };
     if args.realtime {
-        let mut o = realtime(&mut sim, cycles, args.trace, format);
+        let mut between = All(Vec::new());
+        if let Some(path) = &args.retain {
+            let mut err = console::stderr();
+            let warn = Box::new(move |w: String| {
+                if let Some(f) = &mut err {
+                    let _ = writeln!(f, "{w}");
+                }
+            });
+            between.0.push(Box::new(RetainFile::open(
+                &mut sim,
+                path,
+                retain_interval,
+                args.cold,
+                warn,
+            )));
+        }
+        let mut o = realtime(&mut sim, cycles, args.trace, format, &mut between);
         o.stderr.insert_str(0, &warnings);
         o
     } else {
@@ -301,7 +341,13 @@ fn finish(stdout: String, mut stderr: String, result: Result<(), stc_vm::VmFault
 
 /// Real time: reports and warnings are written as they happen, not
 /// collected.
-fn realtime(sim: &mut Simulation, cycles: Option<u64>, trace: bool, format: Format) -> Outcome {
+fn realtime(
+    sim: &mut Simulation,
+    cycles: Option<u64>,
+    trace: bool,
+    format: Format,
+    between: &mut dyn Between,
+) -> Outcome {
     let stop = sigint::install();
     let (mut stdout, mut stderr) = (String::new(), String::new());
     let (mut out_stream, mut err_stream) = (console::stdout(), console::stderr());
@@ -322,7 +368,7 @@ fn realtime(sim: &mut Simulation, cycles: Option<u64>, trace: bool, format: Form
         }
         None => stdout.push_str(&r.render(format)),
     };
-    let result = stc_runtime::run(sim, cycles, trace, &mut pacer, &mut emit);
+    let result = stc_runtime::run_between(sim, cycles, trace, &mut pacer, &mut emit, between);
     finish(stdout, stderr, result)
 }
 

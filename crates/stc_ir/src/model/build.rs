@@ -148,6 +148,7 @@ impl<'a> Builder<'a> {
                 config,
                 location: g.location.clone(),
                 constant: g.constant,
+                retain: g.retain,
             });
         }
         for (ci, c) in m.configs.iter().enumerate() {
@@ -734,6 +735,7 @@ impl<'a> Builder<'a> {
                 is_ref: v.storage == Storage::Ref,
                 location: v.location.clone(),
                 constant: v.constant,
+                retain: v.retain,
             });
         }
         self.model.pous[p.index()].vars = vars;

@@ -1,0 +1,250 @@
+//! The real-time controller against a real process: `stc run --realtime`
+//! with a retain file, killed with SIGKILL at random moments and
+//! restarted. Every test starts what it needs and stops by itself.
+
+use std::io::{BufRead, BufReader};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::sync::mpsc;
+use std::time::{Duration, Instant};
+
+/// A counter whose RETAIN variables hold an invariant at every cycle end:
+/// `b = 2 * a`, `g = a`, `s` holds the digits of `a mod 1000`; `c` is
+/// not retained.
+const COUNTER: &str = "
+VAR_GLOBAL RETAIN
+    g : DINT;
+END_VAR
+
+PROGRAM Main
+VAR_EXTERNAL
+    g : DINT;
+END_VAR
+VAR RETAIN
+    a : DINT;
+    b : LINT;
+    s : STRING[8];
+END_VAR
+VAR
+    c : DINT;
+END_VAR
+VAR_OUTPUT
+    oa : DINT;
+    ob : LINT;
+    og : DINT;
+    os : STRING[8];
+    oc : DINT;
+END_VAR
+    a := a + 1;
+    b := b + 2;
+    g := g + 1;
+    s := DINT_TO_STRING(a MOD 1000);
+    c := c + 1;
+    oa := a; ob := b; og := g; os := s; oc := c;
+END_PROGRAM
+
+CONFIGURATION Plant
+    RESOURCE Cpu ON PLC
+        TASK fast (INTERVAL := T#5ms, PRIORITY := 1);
+        PROGRAM Main WITH fast : Main;
+    END_RESOURCE
+END_CONFIGURATION
+";
+
+fn work_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("stc-ctl-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn stc(dir: &Path, args: &[&str]) -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_stc"));
+    c.current_dir(dir).args(args);
+    c
+}
+
+/// One report line: (a, b, g, s, c).
+fn values(line: &str) -> Option<(i64, i64, i64, String, i64)> {
+    let v: serde_json::Value = serde_json::from_str(line).ok()?;
+    let v = v.get("values")?;
+    Some((
+        v.get("Main.oa")?.as_i64()?,
+        v.get("Main.ob")?.as_i64()?,
+        v.get("Main.og")?.as_i64()?,
+        v.get("Main.os")?.as_str()?.to_string(),
+        v.get("Main.oc")?.as_i64()?,
+    ))
+}
+
+/// The lines of a child's stdout, as they come.
+fn lines_of(child: &mut Child) -> mpsc::Receiver<String> {
+    let out = child.stdout.take().unwrap();
+    let (tx, rx) = mpsc::channel();
+    std::thread::spawn(move || {
+        for line in BufReader::new(out).lines() {
+            let Ok(line) = line else { break };
+            if tx.send(line).is_err() {
+                break;
+            }
+        }
+    });
+    rx
+}
+
+struct Rng(u64);
+
+impl Rng {
+    fn below(&mut self, n: u64) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0 % n
+    }
+}
+
+fn check(line: &str) -> i64 {
+    let (a, b, g, s, _) = values(line).unwrap_or_else(|| panic!("not a report: {line}"));
+    assert_eq!(b, 2 * a, "b is not 2a in {line}");
+    assert_eq!(g, a, "g is not a in {line}");
+    assert_eq!(s, (a % 1000).to_string(), "s is not a mod 1000 in {line}");
+    a
+}
+
+#[cfg(unix)]
+#[test]
+fn sigkill_at_random_moments_never_loses_a_saved_cycle() {
+    let dir = work_dir("kill");
+    std::fs::write(dir.join("counter.st"), COUNTER).unwrap();
+    let seed = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .unwrap()
+        .as_nanos() as u64
+        | 1;
+    eprintln!("seed {seed}");
+    let mut rng = Rng(seed);
+    let deadline = Instant::now() + Duration::from_secs(120);
+    let args = [
+        "run",
+        "counter.st",
+        "--realtime",
+        "--retain",
+        "state.ret",
+        "--trace",
+        "--format",
+        "json",
+    ];
+    // The last cycle a run printed: it was saved before it was printed.
+    let mut last_printed = 0i64;
+    let mut kills = 0;
+    for round in 0..20 {
+        assert!(Instant::now() < deadline, "took too long ({round} rounds)");
+        let mut child = stc(&dir, &args)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let rx = lines_of(&mut child);
+        // Wait for the first report (the program has started), then let it
+        // run a random while, reading as it goes.
+        let first = rx
+            .recv_timeout(Duration::from_secs(30))
+            .expect("no report within 30 s");
+        let a = check(&first);
+        assert!(
+            a > last_printed,
+            "round {round}: restarted at a = {a}, but a = {last_printed} was saved"
+        );
+        let (_, _, _, _, c) = values(&first).unwrap();
+        assert_eq!(c, 1, "c is not retained: {first}");
+        last_printed = a;
+        let run_for = Duration::from_millis(rng.below(120));
+        let until = Instant::now() + run_for;
+        while let Ok(line) = rx.recv_timeout(until.saturating_duration_since(Instant::now())) {
+            last_printed = check(&line);
+        }
+        // SIGKILL: no handler runs, the process stops wherever it is.
+        child.kill().unwrap();
+        child.wait().unwrap();
+        kills += 1;
+        for line in rx.try_iter() {
+            last_printed = check(&line);
+        }
+        let mut err = String::new();
+        std::io::Read::read_to_string(child.stderr.as_mut().unwrap(), &mut err).unwrap();
+        // Overruns may be reported on a loaded machine; a refused or
+        // unwritable retain file may not.
+        assert!(
+            !err.contains("not loaded") && !err.contains("cannot"),
+            "round {round}: {err}"
+        );
+    }
+    assert_eq!(kills, 20);
+    // A last clean run with --cold starts from the initial values.
+    let out = stc(&dir, &args)
+        .args(["--cold", "--cycles", "1"])
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(check(text.lines().next().unwrap()), 1, "{text}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_corrupted_or_foreign_retain_file_is_reported_and_ignored() {
+    let dir = work_dir("bad");
+    std::fs::write(dir.join("counter.st"), COUNTER).unwrap();
+    let run = |extra: &[&str]| {
+        let out = stc(
+            &dir,
+            &["run", "counter.st", "--realtime", "--retain", "state.ret"],
+        )
+        .args(["--format", "json", "--cycles", "3"])
+        .args(extra)
+        .output()
+        .unwrap();
+        assert!(out.status.success(), "{out:?}");
+        let text = String::from_utf8(out.stdout).unwrap();
+        (
+            check(text.lines().last().unwrap()),
+            String::from_utf8(out.stderr).unwrap(),
+        )
+    };
+    // No file: a cold start; the next run continues where it stopped.
+    assert_eq!(run(&[]).0, 3);
+    let (a, err) = run(&[]);
+    assert_eq!(a, 6);
+    assert!(err.contains("warm start"), "{err}");
+    // A flipped byte: reported, not loaded.
+    let path = dir.join("state.ret");
+    let mut bytes = std::fs::read(&path).unwrap();
+    let n = bytes.len();
+    bytes[n / 2] ^= 0x10;
+    std::fs::write(&path, &bytes).unwrap();
+    let (a, err) = run(&[]);
+    assert_eq!(a, 3);
+    assert!(
+        err.contains("checksum") && err.contains("not loaded"),
+        "{err}"
+    );
+    // Another program's file.
+    let other = COUNTER
+        .replace("    a := a + 1;", "    a := a + 1;\n    z := z + 1;")
+        .replace(
+            "VAR RETAIN\n    a : DINT;",
+            "VAR RETAIN\n    z : INT;\n    a : DINT;",
+        );
+    std::fs::write(dir.join("other.st"), other).unwrap();
+    let out = stc(
+        &dir,
+        &["run", "other.st", "--realtime", "--retain", "state.ret"],
+    )
+    .args(["--cycles", "1"])
+    .output()
+    .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("another program"), "{err}");
+    // --cold ignores a valid file.
+    assert_eq!(run(&["--cold"]).0, 3);
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -57,7 +57,7 @@ enum Command {
         #[command(flatten)]
         common: Common,
         #[command(flatten)]
-        args: crate::run::RunArgs,
+        args: Box<crate::run::RunArgs>,
     },
     /// Explain a diagnostic code.
     Explain {
@@ -207,7 +207,7 @@ fn usage_error(msg: impl std::fmt::Display) -> Outcome {
 fn run(cli: Cli) -> Outcome {
     match cli.command {
         Command::Explain { code } => explain(&code),
-        Command::Run { common, args } => crate::run::run(&common.options(), args),
+        Command::Run { common, args } => crate::run::run(&common.options(), *args),
         Command::Check { common, files } => {
             let opts = common.options();
             match sources::load(&files) {

@@ -7,6 +7,7 @@
 pub mod cli;
 pub mod controller;
 pub mod driver;
+pub mod modbus;
 pub mod output;
 pub mod run;
 pub mod sources;

@@ -9,10 +9,11 @@
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
 use clap::{Args, ValueEnum};
 use stc_engine_c::{CEngine, Toolchain};
+use stc_runtime::iomap::{default_layout, Exchange, IoMap, ProcessImage, SimInputs};
 use stc_runtime::path::split_list;
 use stc_runtime::realtime::{RealTime, WallClock};
 use stc_runtime::{Between, Engine};
@@ -69,6 +70,14 @@ pub struct RunArgs {
     /// Pace the cycles with the wall clock (stop with Ctrl-C).
     #[arg(long)]
     pub realtime: bool,
+    /// Real time: the hardware allocation map (TOML) binding variables to
+    /// Modbus registers and simulated channels.
+    #[arg(long = "io-map", value_name = "FILE", requires = "realtime")]
+    pub io_map: Option<PathBuf>,
+    /// Real time: serve the process image over Modbus TCP (OpenPLC's
+    /// layout plus the allocation map).
+    #[arg(long, value_name = "HOST:PORT", requires = "realtime")]
+    pub modbus: Option<String>,
     /// Real time: keep the RETAIN variables in FILE, restored at start
     /// (warm start) and saved crash-safely at cycle ends.
     #[arg(long, value_name = "FILE", requires = "realtime")]
@@ -295,6 +304,20 @@ fn configure_and_run(image: Box<dyn Engine>, args: &RunArgs) -> Outcome {
     };
     if args.realtime {
         let mut between = All(Vec::new());
+        let map = match &args.io_map {
+            None => None,
+            Some(path) => {
+                let text = match std::fs::read_to_string(path) {
+                    Ok(t) => t,
+                    Err(e) => return usage_error(format!("cannot read {}: {e}", path.display())),
+                };
+                match IoMap::parse(&path.display().to_string(), &text, &sim.scope()) {
+                    Ok(m) => Some(m),
+                    Err(e) => return usage_error(e),
+                }
+            }
+        };
+        let mut notes = console::stderr();
         if let Some(path) = &args.retain {
             let mut err = console::stderr();
             let warn = Box::new(move |w: String| {
@@ -309,6 +332,27 @@ fn configure_and_run(image: Box<dyn Engine>, args: &RunArgs) -> Outcome {
                 args.cold,
                 warn,
             )));
+        }
+        let (modbus_entries, sim_inputs) = match map {
+            Some(m) => (m.modbus, m.sim),
+            None => (default_layout(sim.model()), Vec::new()),
+        };
+        if !sim_inputs.is_empty() {
+            between.0.push(Box::new(SimInputs(sim_inputs)));
+        }
+        if let Some(addr) = &args.modbus {
+            let mut image = ProcessImage::new(modbus_entries);
+            image.refresh(sim.engine());
+            let image = Arc::new(Mutex::new(image));
+            match crate::modbus::start(addr, Arc::clone(&image)) {
+                Ok(bound) => {
+                    if let Some(f) = &mut notes {
+                        let _ = writeln!(f, "note: modbus: listening on {bound}");
+                    }
+                }
+                Err(e) => return usage_error(e),
+            }
+            between.0.push(Box::new(Exchange(image)));
         }
         let mut o = realtime(&mut sim, cycles, args.trace, format, &mut between);
         o.stderr.insert_str(0, &warnings);

@@ -248,3 +248,223 @@ fn a_corrupted_or_foreign_retain_file_is_reported_and_ignored() {
     assert_eq!(run(&["--cold"]).0, 3);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A program on the Modbus server: coil 0 (`%QX0.0`) and holding
+/// register 0 (`%QW0`) are written by the client; the program answers on
+/// coil 1, and on input registers the allocation map binds.
+const PLANT: &str = "
+PROGRAM Main
+VAR
+    start    AT %QX0.0 : BOOL;
+    lamp     AT %QX0.1 : BOOL;
+    setpoint AT %QW0 : INT;
+    level : INT;
+    count : DINT;
+END_VAR
+    count := count + 1;
+    lamp := start;
+    level := setpoint * 2;
+END_PROGRAM
+";
+
+const PLANT_MAP: &str = "
+# input registers for two unlocated variables
+[[modbus]]
+variable = \"Main.level\"
+table = \"input\"
+address = 0
+
+[[modbus]]
+variable = \"Main.count\"
+table = \"input\"
+address = 10
+";
+
+/// Starts the plant with a Modbus server on a free loopback port.
+fn start_plant(dir: &Path) -> (Child, SocketAddr) {
+    std::fs::write(dir.join("plant.st"), PLANT).unwrap();
+    std::fs::write(dir.join("plant.toml"), PLANT_MAP).unwrap();
+    let mut child = stc(
+        dir,
+        &[
+            "run",
+            "plant.st",
+            "--realtime",
+            "--tick",
+            "10ms",
+            "--io-map",
+            "plant.toml",
+            "--modbus",
+            "127.0.0.1:0",
+            "--format",
+            "json",
+        ],
+    )
+    .stdout(Stdio::null())
+    .stderr(Stdio::piped())
+    .spawn()
+    .unwrap();
+    let err = child.stderr.take().unwrap();
+    let (tx, rx) = mpsc::channel();
+    std::thread::spawn(move || {
+        for line in BufReader::new(err).lines() {
+            let Ok(line) = line else { break };
+            if let Some(a) = line.strip_prefix("note: modbus: listening on ") {
+                let _ = tx.send(a.parse::<SocketAddr>().unwrap());
+            }
+        }
+    });
+    let addr = rx
+        .recv_timeout(Duration::from_secs(30))
+        .expect("the server did not start within 30 s");
+    (child, addr)
+}
+
+/// Polls until `f` holds, for at most 10 s.
+fn eventually(what: &str, mut f: impl FnMut() -> bool) {
+    let end = Instant::now() + Duration::from_secs(10);
+    while Instant::now() < end {
+        if f() {
+            return;
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    panic!("{what}: not within 10 s");
+}
+
+use std::net::SocketAddr;
+use tokio_modbus::client::sync::{self, Reader, Writer};
+use tokio_modbus::ExceptionCode;
+
+#[test]
+fn a_modbus_client_reads_and_writes_a_running_program() {
+    let dir = work_dir("modbus");
+    let (mut child, addr) = start_plant(&dir);
+    let mut c = sync::tcp::connect_with_timeout(addr, Some(Duration::from_secs(5))).unwrap();
+    // The cycle counter moves (input registers 10-11, high word first).
+    let count = |c: &mut sync::Context| {
+        let r = c.read_input_registers(10, 2).unwrap().unwrap();
+        (u32::from(r[0]) << 16) | u32::from(r[1])
+    };
+    let first = count(&mut c);
+    eventually("the cycle counter moves", || count(&mut c) > first);
+    // A coil written by the client: the program sees it in a next cycle.
+    assert_eq!(c.read_coils(0, 2).unwrap().unwrap(), [false, false]);
+    c.write_single_coil(0, true).unwrap().unwrap();
+    eventually("lamp follows start", || {
+        c.read_coils(1, 1).unwrap().unwrap() == [true]
+    });
+    // A holding register: level = 2 * setpoint on input register 0.
+    c.write_multiple_registers(0, &[21]).unwrap().unwrap();
+    eventually("level = 2 * setpoint", || {
+        c.read_input_registers(0, 1).unwrap().unwrap() == [42]
+    });
+    assert_eq!(c.read_holding_registers(0, 1).unwrap().unwrap(), [21]);
+    // Exceptions: an address outside the tables, a function not served.
+    assert_eq!(
+        c.read_holding_registers(5000, 1).unwrap(),
+        Err(ExceptionCode::IllegalDataAddress)
+    );
+    assert_eq!(
+        c.write_single_coil(9, true).unwrap(),
+        Err(ExceptionCode::IllegalDataAddress)
+    );
+    assert_eq!(
+        c.read_input_registers(0, 200).unwrap(),
+        Err(ExceptionCode::IllegalDataValue)
+    );
+    // A malformed frame (a length field far past any frame) and a
+    // half-sent one cost only their own connection.
+    use std::io::Write;
+    let mut bad = std::net::TcpStream::connect(addr).unwrap();
+    bad.write_all(&[0, 1, 0, 0, 0xff, 0xff, 1, 3, 0, 0])
+        .unwrap();
+    let mut half = std::net::TcpStream::connect(addr).unwrap();
+    half.write_all(&[0, 2, 0, 0]).unwrap();
+    let before = count(&mut c);
+    eventually("the server still answers", || count(&mut c) > before);
+    let mut c2 = sync::tcp::connect_with_timeout(addr, Some(Duration::from_secs(5))).unwrap();
+    assert_eq!(c2.read_coils(0, 2).unwrap().unwrap(), [true, true]);
+    drop((bad, half));
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn io_map_mistakes_are_exit_2_with_their_line_before_anything_runs() {
+    let dir = work_dir("map");
+    std::fs::write(dir.join("plant.st"), PLANT).unwrap();
+    let cases = [
+        (
+            "[[modbus]]\nvariable = \"Main.nope\"\ntable = \"input\"\naddress = 0\n",
+            "bad.toml:2: ",
+        ),
+        (
+            "[[modbus]]\nvariable = \"Main.level\"\ntable = \"coil\"\naddress = 7\n",
+            "bad.toml:2: `Main.level` is INT: a coil holds a BOOL",
+        ),
+        (
+            "[[modbus]]\nvariable = \"Main.level\"\ntable = \"holding\"\naddress = 0\n",
+            "bad.toml:4: holding register 0 is used twice",
+        ),
+        (
+            "[[modbus]]\nvariable = \"Main.level\"\ntable = \"input\"\naddress = 0\nperiod = 3\n",
+            "bad.toml:5: ",
+        ),
+    ];
+    for (text, expected) in cases {
+        std::fs::write(dir.join("bad.toml"), text).unwrap();
+        let out = stc(
+            &dir,
+            &[
+                "run",
+                "plant.st",
+                "--realtime",
+                "--io-map",
+                "bad.toml",
+                "--cycles",
+                "1",
+            ],
+        )
+        .output()
+        .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{text}: {err}");
+        assert!(
+            err.starts_with(&format!("error: {expected}")),
+            "{text}: {err}"
+        );
+        assert!(out.stdout.is_empty(), "{text}: something ran");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn the_tank_example_runs_with_its_allocation_map() {
+    let examples = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples"));
+    let out = stc(
+        examples,
+        &[
+            "run",
+            "tank_control.st",
+            "--realtime",
+            "--tick",
+            "10ms",
+            "--io-map",
+            "tank_control.toml",
+            "--modbus",
+            "127.0.0.1:0",
+            "--cycles",
+            "3",
+        ],
+    )
+    .output()
+    .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(
+        err.contains("note: modbus: listening on 127.0.0.1:"),
+        "{err}"
+    );
+}

@@ -17,6 +17,7 @@
 
 pub mod engine;
 pub mod error;
+pub mod iomap;
 pub mod path;
 pub mod realtime;
 pub mod report;

@@ -262,6 +262,25 @@ impl Simulation {
         self.engine.as_ref()
     }
 
+    /// The engine, to exchange the process image between cycles.
+    pub fn engine_mut(&mut self) -> &mut dyn Engine {
+        self.engine.as_mut()
+    }
+
+    /// The program model.
+    pub fn model(&self) -> &Arc<Model> {
+        &self.model
+    }
+
+    /// What paths are resolved against in this run.
+    pub fn scope(&self) -> Scope<'_> {
+        Scope {
+            model: &self.model,
+            instances: &self.plan.instances,
+            config: self.plan.config,
+        }
+    }
+
     /// The watched places, in report order.
     pub fn watch(&self) -> &[Place] {
         &self.watch

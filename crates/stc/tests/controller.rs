@@ -468,3 +468,88 @@ fn the_tank_example_runs_with_its_allocation_map() {
         "{err}"
     );
 }
+
+#[test]
+fn fifty_concurrent_clients_are_served_while_the_cycles_go_on() {
+    let dir = work_dir("clients");
+    let (mut child, addr) = start_plant(&dir);
+    let deadline = Instant::now() + Duration::from_secs(60);
+    let clients: Vec<_> = (0..50u16)
+        .map(|i| {
+            std::thread::spawn(move || {
+                let mut c =
+                    sync::tcp::connect_with_timeout(addr, Some(Duration::from_secs(20))).unwrap();
+                let mut last = 0u32;
+                for _ in 0..20 {
+                    let r = c.read_input_registers(10, 2).unwrap().unwrap();
+                    let n = (u32::from(r[0]) << 16) | u32::from(r[1]);
+                    assert!(n >= last, "client {i}: the counter went back");
+                    last = n;
+                    // Past the holding registers: an exception, and the
+                    // connection goes on.
+                    assert_eq!(
+                        c.write_single_register(100 + i, i).unwrap(),
+                        Err(ExceptionCode::IllegalDataAddress)
+                    );
+                }
+                last
+            })
+        })
+        .collect();
+    let mut seen = Vec::new();
+    for c in clients {
+        seen.push(c.join().expect("a client failed"));
+    }
+    assert!(Instant::now() < deadline, "50 clients took more than 60 s");
+    // The program kept cycling while they were served.
+    let mut c = sync::tcp::connect_with_timeout(addr, Some(Duration::from_secs(5))).unwrap();
+    let r = c.read_input_registers(10, 2).unwrap().unwrap();
+    let now = (u32::from(r[0]) << 16) | u32::from(r[1]);
+    assert!(now > *seen.iter().min().unwrap());
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The Python `pymodbus` client (installed with pip when missing) against
+/// a running program: tests/modbus/pymodbus_client.py.
+#[test]
+fn the_pymodbus_client_drives_a_running_program() {
+    let has = |py: &str| {
+        Command::new(py)
+            .args(["-c", "import pymodbus"])
+            .output()
+            .is_ok_and(|o| o.status.success())
+    };
+    if !has("python3") {
+        let pip = Command::new("python3")
+            .args(["-m", "pip", "install", "--quiet", "pymodbus"])
+            .output()
+            .expect("python3 is needed for this test");
+        assert!(
+            pip.status.success(),
+            "pip install pymodbus: {}",
+            String::from_utf8_lossy(&pip.stderr)
+        );
+    }
+    let dir = work_dir("pymodbus");
+    let (mut child, addr) = start_plant(&dir);
+    let script = Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../tests/modbus/pymodbus_client.py"
+    ));
+    let out = Command::new("python3")
+        .arg(script)
+        .args([addr.ip().to_string(), addr.port().to_string()])
+        .output()
+        .unwrap();
+    child.kill().unwrap();
+    child.wait().unwrap();
+    assert!(
+        out.status.success(),
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -98,6 +98,7 @@ pub fn start(addr: &str, image: Arc<Mutex<ProcessImage>>) -> Result<SocketAddr, 
     let rt = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(1)
         .enable_io()
+        .enable_time()
         .build()
         .map_err(|e| format!("--modbus {addr}: cannot start the server: {e}"))?;
     std::thread::Builder::new()
@@ -118,8 +119,14 @@ pub fn start(addr: &str, image: Arc<Mutex<ProcessImage>>) -> Result<SocketAddr, 
                     async move { r }
                 };
                 // A broken connection is the client's business: it is
-                // closed, the others go on.
-                let _ = server.serve(&on_connected, |_err| {}).await;
+                // closed, the others go on. `serve` returns only when
+                // accepting fails (out of file descriptors, say): wait a
+                // moment and listen again rather than leave the controller
+                // unreachable.
+                loop {
+                    let _ = server.serve(&on_connected, |_err| {}).await;
+                    tokio::time::sleep(std::time::Duration::from_millis(100)).await;
+                }
             });
         })
         .map_err(|e| format!("--modbus {addr}: cannot start the server: {e}"))?;

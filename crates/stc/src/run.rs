@@ -448,9 +448,10 @@ mod console {
     }
 }
 
-/// Ctrl-C in real time: the first one stops the run after the current
-/// cycle (the last report is still printed); a second one ends the process
-/// at once, as an interrupted program would.
+/// Ctrl-C (or SIGTERM, as a service manager stops a controller) in real
+/// time: the first one stops the run after the current cycle (the last
+/// report is still printed, the retained variables saved); a second one
+/// ends the process at once, as an interrupted program would.
 mod sigint {
     use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -461,6 +462,8 @@ mod sigint {
         use std::os::raw::c_int;
 
         pub const SIGINT: c_int = 2;
+        /// 15 on every Unix stc runs on (Linux, the BSDs, macOS).
+        pub const SIGTERM: c_int = 15;
 
         extern "C" {
             /// `signal(2)`; the handler is passed as an address, which is
@@ -492,6 +495,7 @@ mod sigint {
                 // requires of a handler.
                 unsafe {
                     sys::signal(sys::SIGINT, on_sigint as extern "C" fn(_) as usize);
+                    sys::signal(sys::SIGTERM, on_sigint as extern "C" fn(_) as usize);
                 }
             });
         }

@@ -553,3 +553,52 @@ fn the_pymodbus_client_drives_a_running_program() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// SIGTERM ends a controller after its current cycle, with a last save
+/// even between two interval saves; the next start continues from it.
+#[cfg(unix)]
+#[test]
+fn sigterm_stops_after_the_cycle_and_saves_the_retained_variables() {
+    let dir = work_dir("term");
+    std::fs::write(dir.join("counter.st"), COUNTER).unwrap();
+    let args = [
+        "run",
+        "counter.st",
+        "--realtime",
+        "--retain",
+        "state.ret",
+        "--retain-interval",
+        "1h",
+        "--trace",
+        "--format",
+        "json",
+    ];
+    let mut child = stc(&dir, &args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let rx = lines_of(&mut child);
+    let mut last = check(&rx.recv_timeout(Duration::from_secs(30)).unwrap());
+    let until = Instant::now() + Duration::from_millis(200);
+    while let Ok(line) = rx.recv_timeout(until.saturating_duration_since(Instant::now())) {
+        last = check(&line);
+    }
+    let term = Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(term.success());
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(0));
+    for line in rx.iter() {
+        last = check(&line);
+    }
+    let out = stc(&dir, &args[..5])
+        .args(["--cycles", "1", "--format", "json"])
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(check(text.lines().last().unwrap()), last + 1, "{text}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

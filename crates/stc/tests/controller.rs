@@ -8,11 +8,12 @@ use std::process::{Child, Command, Stdio};
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
-/// A counter whose RETAIN variables hold an invariant at every cycle end:
+/// A counter whose RETAIN (and CODESYS PERSISTENT) variables hold an
+/// invariant at every cycle end:
 /// `b = 2 * a`, `g = a`, `s` holds the digits of `a mod 1000`; `c` is
 /// not retained.
 const COUNTER: &str = "
-VAR_GLOBAL RETAIN
+VAR_GLOBAL PERSISTENT
     g : DINT;
 END_VAR
 

@@ -1,4 +1,4 @@
-//! `stc run` (spec/cli.md): compile the sources (or load one `.stbc`
+//! `stc run` (spec/cli.md): compile the sources (or load one `.stbc` or `.vmasm`
 //! file), set the runtime up from the options, run in simulated time or in
 //! real time, and print the reports.
 //!
@@ -17,7 +17,7 @@ use stc_runtime::iomap::{default_layout, Exchange, IoMap, ProcessImage, SimInput
 use stc_runtime::path::split_list;
 use stc_runtime::realtime::{RealTime, WallClock};
 use stc_runtime::{Between, Engine};
-use stc_runtime::{Format, Report, Simulation, Stimulus, Unpaced, DEFAULT_MAX_STEPS};
+use stc_runtime::{Format, Renderer, Report, Simulation, Stimulus, Unpaced, DEFAULT_MAX_STEPS};
 use stc_vm::Machine;
 
 use crate::cli::{Outcome, EXIT_ERRORS, EXIT_OK, EXIT_USAGE};
@@ -108,6 +108,7 @@ pub enum Backend {
 pub enum ReportFormat {
     Text,
     Json,
+    Csv,
 }
 
 fn usage_error(msg: impl std::fmt::Display) -> Outcome {
@@ -139,25 +140,38 @@ fn load(
     opts: &Options,
     backend: Backend,
 ) -> Result<(Box<dyn Engine>, String), Outcome> {
-    let is_stbc = |p: &Path| {
-        p.extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("stbc"))
+    // Bytecode: a `.stbc` file, or its VMASM text (`--emit vmasm`), which
+    // is assembled and verified like a loaded file.
+    let bytecode_kind = |p: &Path| {
+        p.extension().and_then(|e| {
+            let e = e.to_ascii_lowercase();
+            (e == "stbc" || e == "vmasm").then_some(e)
+        })
     };
-    if files.iter().any(|p| is_stbc(p)) {
+    if let Some(kind) = files.iter().find_map(|p| bytecode_kind(p)) {
         let [file] = files else {
-            return Err(usage_error(
-                "a .stbc file is run alone, without other files",
-            ));
+            return Err(usage_error(format!(
+                "a .{} file is run alone, without other files",
+                kind.to_string_lossy()
+            )));
         };
         let bytes = std::fs::read(file)
             .map_err(|e| usage_error(format!("cannot read {}: {e}", file.display())))?;
         if backend != Backend::Vm {
-            return Err(usage_error(
-                "a .stbc file is bytecode: it runs on the VM (--backend vm)",
-            ));
+            return Err(usage_error(format!(
+                "a .{} file is bytecode: it runs on the VM (--backend vm)",
+                kind.to_string_lossy()
+            )));
         }
-        let image = stc_vm::format::decode(&bytes)
-            .map_err(|e| usage_error(format!("cannot load {}: {e}", file.display())))?;
+        let image = if kind == "vmasm" {
+            let text = String::from_utf8(bytes).map_err(|_| {
+                usage_error(format!("cannot load {}: not UTF-8 text", file.display()))
+            })?;
+            stc_vm::asm::assemble(&text)
+        } else {
+            stc_vm::format::decode(&bytes)
+        }
+        .map_err(|e| usage_error(format!("cannot load {}: {e}", file.display())))?;
         return Ok((Box::new(Machine::new(Arc::new(image))), String::new()));
     }
     let (sm, diags) = sources::load(files).map_err(usage_error)?;
@@ -301,6 +315,7 @@ fn configure_and_run(image: Box<dyn Engine>, args: &RunArgs) -> Outcome {
     let format = match args.format {
         ReportFormat::Text => Format::Text,
         ReportFormat::Json => Format::Json,
+        ReportFormat::Csv => Format::Csv,
     };
     if args.realtime {
         let mut between = All(Vec::new());
@@ -359,8 +374,9 @@ fn configure_and_run(image: Box<dyn Engine>, args: &RunArgs) -> Outcome {
         o
     } else {
         let mut stdout = String::new();
+        let mut renderer = Renderer::new(format);
         let result = stc_runtime::run(&mut sim, cycles, args.trace, &mut Unpaced, &mut |r| {
-            stdout.push_str(&r.render(format))
+            stdout.push_str(&renderer.render(r))
         });
         finish(stdout, warnings, result)
     }
@@ -405,12 +421,13 @@ fn realtime(
         }
     };
     let mut pacer = RealTime::new(WallClock::new(), sim.plan().tick_ns, stop, &mut warn);
+    let mut renderer = Renderer::new(format);
     let mut emit = |r: &Report| match &mut out_stream {
         Some(f) => {
-            let _ = f.write_all(r.render(format).as_bytes());
+            let _ = f.write_all(renderer.render(r).as_bytes());
             let _ = f.flush();
         }
-        None => stdout.push_str(&r.render(format)),
+        None => stdout.push_str(&renderer.render(r)),
     };
     let result = stc_runtime::run_between(sim, cycles, trace, &mut pacer, &mut emit, between);
     finish(stdout, stderr, result)

@@ -64,7 +64,7 @@ fn every_diagnostic_code_has_a_test_case() {
             let p = e.path();
             if p.is_dir() {
                 stack.push(p);
-            } else if p.extension().is_some_and(|x| x == "st") {
+            } else if p.extension().is_some_and(|x| x == "st" || x == "il") {
                 let text = std::fs::read_to_string(&p).unwrap_or_else(|_| {
                     String::from_utf8_lossy(&std::fs::read(&p).unwrap()).into_owned()
                 });

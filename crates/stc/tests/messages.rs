@@ -121,3 +121,80 @@ fn help_is_given_where_a_person_needs_it() {
         assert!(out.stderr.contains(want), "no `{want}` in:\n{}", out.stderr);
     }
 }
+
+#[test]
+fn reports_as_csv_and_stimulus_rows_by_time() {
+    let p = write(
+        "csv.st",
+        "PROGRAM Main VAR_INPUT k : INT; END_VAR VAR_OUTPUT n : INT; s : STRING := 'a,\"b'; END_VAR n := n + k; END_PROGRAM\n",
+    );
+    let st = write("csv_stim.csv", "time,Main.k\nT#0s,1\nT#20ms,10\n");
+    let out = run(&[
+        "run",
+        p.to_str().unwrap(),
+        "--cycles",
+        "4",
+        "--tick",
+        "10ms",
+        "--trace",
+        "--format",
+        "csv",
+        "--stimulus",
+        st.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status, 0, "{}", out.stderr);
+    assert_eq!(
+        out.stdout,
+        "cycle,time,Main.n,Main.s\n\
+         1,T#0s,1,\"a,\"\"b\"\n\
+         2,T#10ms,2,\"a,\"\"b\"\n\
+         3,T#20ms,12,\"a,\"\"b\"\n\
+         4,T#30ms,22,\"a,\"\"b\"\n"
+    );
+    let off = run(&[
+        "run",
+        p.to_str().unwrap(),
+        "--tick",
+        "15ms",
+        "--stimulus",
+        st.to_str().unwrap(),
+    ]);
+    assert_eq!(off.status, 2, "{}", off.stderr);
+    assert!(
+        off.stderr
+            .contains("T#20ms is not the time of a cycle with a tick of T#15ms"),
+        "{}",
+        off.stderr
+    );
+}
+
+#[test]
+fn vmasm_text_runs_as_its_program_does() {
+    let root = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
+    let src = root.join("examples/traffic_light.st");
+    let asm = std::env::temp_dir().join(format!("stc-messages-{}.vmasm", std::process::id()));
+    let built = run(&[
+        "build",
+        "--emit",
+        "vmasm",
+        src.to_str().unwrap(),
+        "-o",
+        asm.to_str().unwrap(),
+    ]);
+    assert_eq!(built.status, 0, "{}", built.stderr);
+    let direct = run(&["run", src.to_str().unwrap(), "--cycles", "40", "--trace"]);
+    let assembled = run(&["run", asm.to_str().unwrap(), "--cycles", "40", "--trace"]);
+    assert_eq!(assembled.status, 0, "{}", assembled.stderr);
+    assert_eq!(assembled.stdout, direct.stdout);
+    let broken = write(
+        "broken.vmasm",
+        "  mov8 @1, #2\n  bogus 1 2 3\n.tables\nnot a table\n",
+    );
+    let out = run(&["run", broken.to_str().unwrap()]);
+    assert_eq!(out.status, 2, "{}", out.stderr);
+    assert!(
+        out.stderr.starts_with("error: cannot load "),
+        "{}",
+        out.stderr
+    );
+}

@@ -105,7 +105,7 @@ fn corpus_of_every_source_file_parses() {
                 let p = e.path();
                 if p.is_dir() {
                     stack.push(p);
-                } else if p.extension().is_some_and(|x| x == "st") {
+                } else if p.extension().is_some_and(|x| x == "st" || x == "il") {
                     files.push(p);
                 }
             }

@@ -1560,14 +1560,15 @@ static void text_real(text_buf *t, double x, uint8_t single)
  * Texts of values
  * ====================================================================== */
 
-static void text_duration(text_buf *t, int64_t ns, uint8_t long_form)
+/* The texts of *_TO_STRING have no type prefix (spec/semantics.md):
+ * `1s500ms`, `2024-01-31`, `12:30:00`, `2024-01-31-12:30:00`. */
+static void text_duration(text_buf *t, int64_t ns)
 {
     static const char *const units[7] = { "d", "h", "m", "s", "ms", "us", "ns" };
     static const uint64_t sizes[7] = {
         86400000000000U, 3600000000000U, 60000000000U, 1000000000U, 1000000U, 1000U, 1U
     };
     uint64_t v = magnitude((uint64_t)ns, 1U);
-    text_str(t, (long_form != 0U) ? "LTIME#" : "T#");
     if (ns < 0) {
         text_ch(t, 45U);
     }
@@ -1636,15 +1637,12 @@ static void text_clock(text_buf *t, int64_t tod)
 static void text_time(text_buf *t, int64_t v, uint8_t elem)
 {
     if ((elem == (uint8_t)STC_E_TIME) || (elem == (uint8_t)STC_E_LTIME)) {
-        text_duration(t, v, (elem == (uint8_t)STC_E_LTIME) ? 1U : 0U);
+        text_duration(t, v);
     } else if ((elem == (uint8_t)STC_E_DATE) || (elem == (uint8_t)STC_E_LDATE)) {
-        text_str(t, (elem == (uint8_t)STC_E_LDATE) ? "LDATE#" : "D#");
         text_ymd(t, stc_floordiv_i64(v, SECS_PER_DAY));
     } else if ((elem == (uint8_t)STC_E_TOD) || (elem == (uint8_t)STC_E_LTOD)) {
-        text_str(t, (elem == (uint8_t)STC_E_LTOD) ? "LTOD#" : "TOD#");
         text_clock(t, v);
     } else {
-        text_str(t, (elem == (uint8_t)STC_E_LDT) ? "LDT#" : "DT#");
         text_ymd(t, stc_floordiv_i64(v, NS_PER_D));
         text_ch(t, 45U);
         text_clock(t, v);

@@ -71,10 +71,11 @@ quote inside a string is written `$'` (or `$\"` in a WSTRING), a line break
     E0004 Error "unterminated pragma"
 "A pragma `{ ...` was opened but never closed with `}` before the end of the file.";
     E0005 Error "invalid identifier"
-"IEC 61131-3 identifiers consist of ASCII letters, digits and single
-underscores: they must not contain two underscores in a row, must not end
-with an underscore and must not contain non-ASCII letters. Rename the
-identifier, for example `motor__on` to `motor_on`.";
+"IEC 61131-3 identifiers consist of ASCII letters, digits and underscores;
+a letter outside ASCII (`Drücken`, `温度`) is not allowed. Rename the
+identifier, for example `Drücken` to `Druecken`. (Two underscores in a row or
+a trailing underscore, which the standard forbids too, are accepted with
+warning W0008, as every tool does.)";
     E0006 Error "malformed numeric literal"
 "A number literal is not well formed: a digit that is not valid in its base
 (`2#102`, `16#FG`), a base other than 2, 8 or 16, a missing digit after a
@@ -123,12 +124,12 @@ thousands of nested parentheses). Split the expression with intermediate
 variables.";
     E0030 Error "not supported yet"
 "The construct is valid in some IEC 61131-3 dialect but stc does not support
-it yet: Instruction List bodies, Sequential Function Charts, the
+it yet: Sequential Function Charts, the
 object-oriented extensions (METHOD, PROPERTY, ACTION, INTERFACE, EXTENDS,
 IMPLEMENTS), POINTER TO, REFERENCE TO, REF_TO and the dereference `^`,
 `REF=`, UNION types, VAR_STAT/VAR_INST sections, variable-length arrays
 (`ARRAY[*]`, `ARRAY[..]`), the `__` operators of CODESYS and TwinCAT
-(`__TRY`, `__NEW`...), logi.CAD UNIT files and `{attribute ...}` pragmas. The
+(`__TRY`, `__NEW`...) and logi.CAD UNIT files. The
 construct is reported once and skipped (or given an unknown type), and
 nothing that follows from it is reported again, so the rest of the file is
 still checked.";
@@ -145,6 +146,47 @@ This comment contains a `(*` (often in code that was commented out, or the
 comment is never closed: it would run to the end of the file. stc read it
 again without nesting: it ends at its first `*)`, as in IEC 61131-3 2nd
 edition. Add the missing `*)`, or remove the inner `(*`.";
+    W0004 Warning "missing `;` after an END keyword"
+"IEC 61131-3 ends every statement and every type declaration with `;`, also
+the compound ones: `END_IF;`, `END_CASE;`, `END_FOR;`, `END_WHILE;`,
+`END_REPEAT;`, and `END_STRUCT;` before `END_TYPE`. CODESYS, TwinCAT and
+RuSTy accept the `;` left out there, so a lot of real code omits it; stc reads
+the code as if the `;` were there and warns. Add the `;` to be portable to
+stricter tools (MatIEC rejects the form).";
+    W0005 Warning "missing `;` before an END keyword"
+"The last statement of a block (before `END_IF`, `ELSE`, `ELSIF`, `UNTIL`,
+`END_CASE`, the END of a POU...), or the last declaration before `END_VAR`,
+`END_STRUCT` or `END_TYPE`, has no `;`. IEC 61131-3 requires it; CODESYS,
+TwinCAT and RuSTy accept it left out. stc reads the code as if the `;` were
+there and warns. Add the `;` to be portable to stricter tools (MatIEC
+rejects the form).";
+    W0006 Warning "array initial value without brackets"
+"An array's initial values are written without the brackets IEC 61131-3
+requires: `a : ARRAY[1..5] OF INT := 2, 2, 3, 2, 2;` instead of
+`:= [2, 2, 3, 2, 2];` (repetitions `3(0)` included). CODESYS 2.3 accepted
+this form and old libraries (OSCAT) use it; stc reads it as the bracketed
+list and warns. Add the brackets to be portable.";
+    W0007 Warning "time of day without seconds"
+"A time-of-day or date-and-time literal leaves out the seconds:
+`TOD#09:00`, `TIME_OF_DAY#9:00`, `DT#2024-01-31-09:00`. IEC 61131-3 requires
+hours, minutes and seconds; CODESYS and TwinCAT accept the short form, which
+means zero seconds. stc reads it so and warns. Write `TOD#09:00:00` to be
+portable.";
+    W0008 Warning "identifier with a trailing or doubled underscore"
+"IEC 61131-3 identifiers must not end with an underscore or contain two
+underscores in a row (`x_`, `true_`, `a__b`, `__SYSTEM_UP_TIME`). CODESYS,
+TwinCAT, RuSTy and MatIEC accept such names and real libraries use them, so
+stc accepts them with this warning. Names differing only in underscores stay
+different names. Rename to be strictly conforming.";
+    W0009 Warning "3rd-edition word used as a name"
+"A word that only the 3rd edition of IEC 61131-3 (2013) reserved (`CHAR`,
+`WCHAR`, `LTIME`, `LDATE`, `LTOD`, `LDT`, `CONTINUE`), or an edge qualifier
+(`R_EDGE`, `F_EDGE`), is declared as a name. Code written for the 2nd
+edition (OSCAT, MatIEC and Beremiz projects, CODESYS 2.3) uses these words
+freely, and every tool of that edition accepts them. stc accepts the name
+with this warning; the name then works everywhere in the file, and the
+3rd-edition meaning of the word is not available in it. Compile 2nd-edition
+code with `--std iec2`, where these words are names without a warning.";
 
     E0101 Error "undeclared variable"
 "The name is not declared as a variable of this POU. Inside a POU only its own
@@ -340,6 +382,26 @@ declaration that is too large, once: the users of a type reported at its
 declaration are not reported again. Make the arrays smaller, or split the
 data over several variables.";
 
+    E1001 Error "the current result is undefined here"
+"An Instruction List instruction reads the current result (the accumulator
+that LD sets and operators combine) where it has no value: at the start of
+the body, after a CAL (a function block call leaves the current result
+undefined), at a label reached with current results of different types (the
+instruction before it and the jumps to it disagree), at a label reached only
+by jumps written after it, or in a parenthesised sequence before its first
+value. Start the instruction sequence with LD (or LDN). A jump written after
+its label must bring the type the label already has when the instruction
+after the label reads the current result.";
+    E1002 Error "the current result is not BOOL"
+"S, R, JMPC, JMPCN, CALC, CALCN, RETC and RETCN test the current result,
+which must then be BOOL. Load a BOOL first, or compare (`GT 0`) to get one.";
+    E1003 Error "jump to an undefined label"
+"JMP, JMPC and JMPCN name a label that no instruction of the same body
+carries (`label: instruction`). Labels are local to one POU body.";
+    E1004 Error "label defined twice"
+"Two instructions of one Instruction List body carry the same label, so a
+jump to it would be ambiguous. Rename one of them.";
+
     W0101 Warning "result depends on evaluation order"
 "A variable is written by an output parameter (`=>`) or VAR_IN_OUT of one call
 and read by another argument of the same enclosing call. IEC 61131-3 does not
@@ -361,7 +423,8 @@ the input to a local variable instead.";
 inputs, outputs and globals are not reported.";
     W0105 Warning "unreachable statement"
 "The statement comes after RETURN, EXIT or CONTINUE in the same block and can
-never run.";
+never run; in Instruction List, the instruction comes after JMP or RET and
+carries no label that a jump names.";
     W0106 Warning "function result may be unassigned"
 "On some path through the FUNCTION its result (the variable named like the
 function) is never assigned, so the function returns the type's initial value
@@ -382,6 +445,13 @@ type, which it hides inside this POU.";
 CONCAT...). Every call of that name in the project then calls this function,
 with its own parameter types, instead of the standard one; give it another
 name unless that is what you want.";
+    W0112 Warning "conversion not in the standard"
+"`BOOL_TO_REAL`, `BOOL_TO_LREAL`, `REAL_TO_BOOL` and `LREAL_TO_BOOL` are not
+among the conversions of IEC 61131-3 (Table 22 of the 3rd edition), but
+MatIEC, Beremiz and CODESYS provide them and programs use them. stc accepts
+them with this warning: BOOL gives 0.0 or 1.0; a REAL or LREAL gives TRUE
+when it is not zero (NaN too). `BOOL_TO_INT` then `INT_TO_REAL` is the
+portable spelling.";
 }
 
 #[cfg(test)]

@@ -121,9 +121,9 @@ VAR_INPUT
     start : BOOL;
 END_VAR
 VAR_OUTPUT
-    motor__on : BOOL;   // E0005
+    motor_läuft : BOOL;   // E0005
 END_VAR
-    motor__on := start;
+    motor_läuft := start;
 END_PROGRAM
 ",
         r"PROGRAM Pump
@@ -131,9 +131,9 @@ VAR_INPUT
     start : BOOL;
 END_VAR
 VAR_OUTPUT
-    motor_on : BOOL;
+    motor_laeuft : BOOL;
 END_VAR
-    motor_on := start;
+    motor_laeuft := start;
 END_PROGRAM
 ",
     ),
@@ -2496,6 +2496,297 @@ VAR_OUTPUT
 END_VAR
     level := Clamp(raw, 0.0, 100.0);
 END_PROGRAM
+",
+    ),
+    (
+        Code::W0004,
+        r"PROGRAM Heater
+VAR_INPUT
+    cold : BOOL;
+END_VAR
+VAR_OUTPUT
+    heat : BOOL;
+END_VAR
+    IF cold THEN
+        heat := TRUE;
+    END_IF   // W0004
+    heat := heat AND cold;
+END_PROGRAM
+",
+        r"PROGRAM Heater
+VAR_INPUT
+    cold : BOOL;
+END_VAR
+VAR_OUTPUT
+    heat : BOOL;
+END_VAR
+    IF cold THEN
+        heat := TRUE;
+    END_IF;
+    heat := heat AND cold;
+END_PROGRAM
+",
+    ),
+    (
+        Code::W0005,
+        r"PROGRAM Heater
+VAR_INPUT
+    cold : BOOL;
+END_VAR
+VAR_OUTPUT
+    heat : BOOL;
+END_VAR
+    IF cold THEN
+        heat := TRUE   // W0005
+    ELSE
+        heat := FALSE;
+    END_IF;
+END_PROGRAM
+",
+        r"PROGRAM Heater
+VAR_INPUT
+    cold : BOOL;
+END_VAR
+VAR_OUTPUT
+    heat : BOOL;
+END_VAR
+    IF cold THEN
+        heat := TRUE;
+    ELSE
+        heat := FALSE;
+    END_IF;
+END_PROGRAM
+",
+    ),
+    (
+        Code::W0006,
+        r"PROGRAM Levels
+VAR_OUTPUT
+    total : INT;
+END_VAR
+VAR
+    level : ARRAY[1..3] OF INT := 10, 20, 30;   // W0006
+END_VAR
+    total := level[1] + level[2] + level[3];
+END_PROGRAM
+",
+        r"PROGRAM Levels
+VAR_OUTPUT
+    total : INT;
+END_VAR
+VAR
+    level : ARRAY[1..3] OF INT := [10, 20, 30];
+END_VAR
+    total := level[1] + level[2] + level[3];
+END_PROGRAM
+",
+    ),
+    (
+        Code::W0007,
+        r"PROGRAM Shift
+VAR_INPUT
+    now : TOD;
+END_VAR
+VAR_OUTPUT
+    day_shift : BOOL;
+END_VAR
+    day_shift := now >= TOD#06:30;   // W0007
+END_PROGRAM
+",
+        r"PROGRAM Shift
+VAR_INPUT
+    now : TOD;
+END_VAR
+VAR_OUTPUT
+    day_shift : BOOL;
+END_VAR
+    day_shift := now >= TOD#06:30:00;
+END_PROGRAM
+",
+    ),
+    (
+        Code::W0008,
+        r"PROGRAM Pump
+VAR_INPUT
+    start : BOOL;
+END_VAR
+VAR_OUTPUT
+    running_ : BOOL;   // W0008
+END_VAR
+    running_ := start;
+END_PROGRAM
+",
+        r"PROGRAM Pump
+VAR_INPUT
+    start : BOOL;
+END_VAR
+VAR_OUTPUT
+    running : BOOL;
+END_VAR
+    running := start;
+END_PROGRAM
+",
+    ),
+    (
+        Code::W0009,
+        r"PROGRAM Display
+VAR_INPUT
+    code : BYTE;
+END_VAR
+VAR_OUTPUT
+    char : BYTE;   // W0009
+END_VAR
+    char := code;
+END_PROGRAM
+",
+        r"PROGRAM Display
+VAR_INPUT
+    code : BYTE;
+END_VAR
+VAR_OUTPUT
+    shown : BYTE;
+END_VAR
+    shown := code;
+END_PROGRAM
+",
+    ),
+    (
+        Code::W0112,
+        r"PROGRAM Tank
+VAR_INPUT
+    full : BOOL;
+END_VAR
+VAR_OUTPUT
+    level : REAL;
+END_VAR
+    level := BOOL_TO_REAL(full);   // W0112
+END_PROGRAM
+",
+        r"PROGRAM Tank
+VAR_INPUT
+    full : BOOL;
+END_VAR
+VAR_OUTPUT
+    level : REAL;
+END_VAR
+    level := SEL(full, 0.0, 1.0);
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1001,
+        r"FUNCTION Double : INT
+VAR_INPUT
+    x : INT;
+END_VAR
+    ADD x   // E1001
+    ST Double
+END_FUNCTION
+",
+        r"FUNCTION Double : INT
+VAR_INPUT
+    x : INT;
+END_VAR
+    LD x
+    ADD x
+    ST Double
+END_FUNCTION
+",
+    ),
+    (
+        Code::E1002,
+        r"FUNCTION Clamp : INT
+VAR_INPUT
+    x : INT;
+END_VAR
+    LD x
+    JMPCN positive   // E1002
+    LD 0
+    ST Clamp
+    RET
+positive:
+    LD x
+    ST Clamp
+END_FUNCTION
+",
+        r"FUNCTION Clamp : INT
+VAR_INPUT
+    x : INT;
+END_VAR
+    LD x
+    LT 0
+    JMPCN positive
+    LD 0
+    ST Clamp
+    RET
+positive:
+    LD x
+    ST Clamp
+END_FUNCTION
+",
+    ),
+    (
+        Code::E1003,
+        r"FUNCTION Clamp : INT
+VAR_INPUT
+    x : INT;
+END_VAR
+    LD x
+    ST Clamp
+    LT 0
+    JMPCN finish   // E1003
+    LD 0
+    ST Clamp
+done:
+    RET
+END_FUNCTION
+",
+        r"FUNCTION Clamp : INT
+VAR_INPUT
+    x : INT;
+END_VAR
+    LD x
+    ST Clamp
+    LT 0
+    JMPCN done
+    LD 0
+    ST Clamp
+done:
+    RET
+END_FUNCTION
+",
+    ),
+    (
+        Code::E1004,
+        r"FUNCTION Clamp : INT
+VAR_INPUT
+    x : INT;
+END_VAR
+    LD x
+    LT 0
+    JMPC done
+    LD x
+    ST Clamp
+    RET
+done:
+    LD Clamp
+done:   // E1004
+    ST Clamp
+END_FUNCTION
+",
+        r"FUNCTION Clamp : INT
+VAR_INPUT
+    x : INT;
+END_VAR
+    LD x
+    ST Clamp
+    LT 0
+    JMPCN done
+    LD 0
+    ST Clamp
+done:
+    RET
+END_FUNCTION
 ",
     ),
 ];

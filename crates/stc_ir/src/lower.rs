@@ -1,5 +1,7 @@
 //! Lowering: the analysed syntax tree to the IR.
 
+mod il;
+
 use stc_diagnostics::{SourceMap, Span};
 use stc_sema::idx::IdVec;
 use stc_sema::{
@@ -96,6 +98,7 @@ pub fn lower(ast: &Ast, analysis: Analysis, interner: &Interner, sources: &Sourc
             vars: IdVec::new(),
             keeps: &keeps,
             pending: Vec::new(),
+            cr_vars: rustc_hash::FxHashMap::default(),
         };
         pous.push(l.pou(def, src));
     }
@@ -134,6 +137,9 @@ struct Lowerer<'a> {
     /// with EN or ENO taken out of an expression (and the operands before
     /// them, so evaluation stays left to right).
     pending: Vec<Stmt>,
+    /// In an Instruction List body: the hidden variable of the current
+    /// result for each type it takes.
+    cr_vars: rustc_hash::FxHashMap<TypeId, VarId>,
 }
 
 impl<'a> Lowerer<'a> {
@@ -235,6 +241,10 @@ impl<'a> Lowerer<'a> {
             }
         }
         body.extend(self.stmts(&src.body));
+        if let Some(il) = &src.il {
+            let stmts = self.il_body(il);
+            body.extend(stmts);
+        }
         let (file, _) = self
             .sources
             .locate(def.span.lo)
@@ -1137,6 +1147,7 @@ impl<'a> Lowerer<'a> {
                 }
                 _ => ExprKind::Load(self.place(e)),
             },
+            AK::IlCr => ExprKind::Load(self.cr_place(ty)),
             AK::Literal(_) | AK::EnumValue { .. } | AK::Error | AK::Deref(_) => {
                 ExprKind::Const(Value::Int(0))
             }

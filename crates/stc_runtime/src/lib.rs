@@ -32,7 +32,7 @@ mod testing;
 
 pub use engine::{Engine, Memory};
 pub use error::Error;
-pub use report::{Format, Report};
+pub use report::{Format, Renderer, Report};
 pub use schedule::{choose, Chosen, Plan};
 pub use sim::{
     run, run_between, Between, Nothing, Options, Pacer, Simulation, Unpaced, DEFAULT_MAX_STEPS,

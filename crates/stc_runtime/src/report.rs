@@ -20,6 +20,37 @@ pub enum Format {
     #[default]
     Text,
     Json,
+    /// A header `cycle,time,PATH,...`, then one row per report (values as
+    /// in JSON; strings, and arrays and structures as their JSON text,
+    /// quoted per RFC 4180 where they need it).
+    Csv,
+}
+
+/// Renders the reports of one run in order: the CSV header comes before
+/// the first row.
+#[derive(Clone, Debug)]
+pub struct Renderer {
+    format: Format,
+    started: bool,
+}
+
+impl Renderer {
+    pub fn new(format: Format) -> Renderer {
+        Renderer {
+            format,
+            started: false,
+        }
+    }
+
+    pub fn render(&mut self, r: &Report) -> String {
+        let mut out = String::new();
+        if self.format == Format::Csv && !self.started {
+            out.push_str(&r.csv_header());
+        }
+        self.started = true;
+        out.push_str(&r.render(self.format));
+        out
+    }
 }
 
 /// The watched values at the end of a cycle.
@@ -38,7 +69,41 @@ impl Report {
         match format {
             Format::Text => self.to_text(),
             Format::Json => self.to_json(),
+            Format::Csv => self.to_csv(),
         }
+    }
+
+    /// The CSV header `cycle,time,PATH,...` and a newline.
+    pub fn csv_header(&self) -> String {
+        let mut out = String::from("cycle,time");
+        for (name, _) in &self.values {
+            out.push(',');
+            out.push_str(&csv_cell(name));
+        }
+        out.push('\n');
+        out
+    }
+
+    /// One CSV row: the cycle, its time and each value as in JSON (a JSON
+    /// string as its text), quoted per RFC 4180 where needed.
+    pub fn to_csv(&self) -> String {
+        let mut out = format!(
+            "{},{}",
+            self.cycle,
+            csv_cell(&format_duration(self.time_ns, false))
+        );
+        for (_, v) in &self.values {
+            let mut json = String::new();
+            json_value(&mut json, v);
+            let text = match serde_json::from_str::<serde_json::Value>(&json) {
+                Ok(serde_json::Value::String(s)) => s,
+                _ => json,
+            };
+            out.push(',');
+            out.push_str(&csv_cell(&text));
+        }
+        out.push('\n');
+        out
     }
 
     /// One line: `{"cycle":3,"time":"T#20ms","values":{"Main.count":3}}`
@@ -86,6 +151,16 @@ impl Report {
             out.push('\n');
         }
         out
+    }
+}
+
+/// A CSV cell: as it is, or in double quotes (with `""` for a quote) when
+/// it holds a comma, a quote or a line break (RFC 4180).
+fn csv_cell(s: &str) -> String {
+    if s.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
     }
 }
 

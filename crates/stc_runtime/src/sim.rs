@@ -151,6 +151,21 @@ impl Simulation {
                 columns.push(place);
             }
             for row in &st.rows {
+                let cycle = row.at.cycle(plan.tick_ns).ok_or_else(|| {
+                    let when = match row.at {
+                        crate::stimulus::At::Time(t) => {
+                            stc_syntax::literal::format_duration(t, false)
+                        }
+                        crate::stimulus::At::Cycle(c) => c.to_string(),
+                    };
+                    err(
+                        row.line,
+                        format!(
+                            "{when} is not the time of a cycle with a tick of {}",
+                            stc_syntax::literal::format_duration(plan.tick_ns, false)
+                        ),
+                    )
+                })?;
                 let mut writes = Vec::new();
                 for (place, cell) in columns.iter().zip(&row.cells) {
                     let Some(text) = cell else { continue };
@@ -159,11 +174,8 @@ impl Simulation {
                     writes.push((place.clone(), v));
                 }
                 match inputs.last_mut() {
-                    Some(last) if last.cycle == row.cycle => last.writes.extend(writes),
-                    _ => inputs.push(Inputs {
-                        cycle: row.cycle,
-                        writes,
-                    }),
+                    Some(last) if last.cycle == cycle => last.writes.extend(writes),
+                    _ => inputs.push(Inputs { cycle, writes }),
                 }
             }
         }

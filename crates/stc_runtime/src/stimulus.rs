@@ -1,6 +1,9 @@
 //! Stimulus files (`--stimulus FILE.csv`, spec/cli.md): a header
 //! `cycle,PATH,PATH,...`, then rows that assign those variables just before
-//! the row's cycle runs; an empty cell leaves a variable alone.
+//! the row's cycle runs; an empty cell leaves a variable alone. With the
+//! header `time,PATH,...` a row gives the time of its cycle instead
+//! (`T#1s` or `1s`: the cycle that runs at that time, so the file keeps its
+//! meaning when `--tick` changes; a time between two cycles is an error).
 //!
 //! The cells are ST literals, so the reader is not plain RFC 4180: a
 //! single-quoted STRING literal (`'a,b'`, with `$'` escapes) is one cell
@@ -23,11 +26,34 @@ pub struct Stimulus {
     pub rows: Vec<Row>,
 }
 
+/// When a row applies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum At {
+    /// Before cycle k (1-based) runs.
+    Cycle(u64),
+    /// Before the cycle that runs at this time (nanoseconds) runs.
+    Time(i64),
+}
+
+impl At {
+    /// The cycle (1-based) with a tick of `tick_ns`; `None` for a time
+    /// that is not a cycle's.
+    pub fn cycle(self, tick_ns: i64) -> Option<u64> {
+        match self {
+            At::Cycle(c) => Some(c),
+            At::Time(t) if tick_ns > 0 && t % tick_ns == 0 => {
+                u64::try_from(t / tick_ns).ok()?.checked_add(1)
+            }
+            At::Time(_) => None,
+        }
+    }
+}
+
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Row {
     /// 1-based line in the file.
     pub line: usize,
-    pub cycle: u64,
+    pub at: At,
     /// One cell per column; `None` leaves the variable alone.
     pub cells: Vec<Option<String>>,
 }
@@ -53,10 +79,11 @@ impl Stimulus {
         };
         let names = split_record(header).map_err(|m| err(header_line, m))?;
         let first = names.first().map(|s| s.as_str()).unwrap_or("");
-        if !first.eq_ignore_ascii_case("cycle") {
+        let timed = first.eq_ignore_ascii_case("time");
+        if !first.eq_ignore_ascii_case("cycle") && !timed {
             return Err(err(
                 header_line,
-                format!("the header must start with `cycle`, not `{first}`"),
+                format!("the header must start with `cycle` or `time`, not `{first}`"),
             ));
         }
         let columns: Vec<String> = names[1..].to_vec();
@@ -80,12 +107,27 @@ impl Stimulus {
                 ));
             }
             let c = cells[0].as_str();
-            let cycle = c
-                .replace('_', "")
-                .parse::<u64>()
-                .ok()
-                .filter(|&n| n >= 1 && !c.is_empty())
-                .ok_or_else(|| err(line, format!("`{c}` is not a cycle number (1, 2, ...)")))?;
+            let at = if timed {
+                let t = crate::parse_tick(c)
+                    .ok()
+                    .or_else(|| {
+                        (c.trim() == "0" || c.trim().eq_ignore_ascii_case("T#0s")).then_some(0)
+                    })
+                    .ok_or_else(|| {
+                        err(line, format!("`{c}` is not a time (T#0s, T#100ms, 1s...)"))
+                    })?;
+                At::Time(t)
+            } else {
+                At::Cycle(
+                    c.replace('_', "")
+                        .parse::<u64>()
+                        .ok()
+                        .filter(|&n| n >= 1 && !c.is_empty())
+                        .ok_or_else(|| {
+                            err(line, format!("`{c}` is not a cycle number (1, 2, ...)"))
+                        })?,
+                )
+            };
             let mut values: Vec<Option<String>> = cells[1..]
                 .iter()
                 .map(|s| (!s.is_empty()).then(|| s.clone()))
@@ -93,12 +135,12 @@ impl Stimulus {
             values.resize(columns.len(), None);
             rows.push(Row {
                 line,
-                cycle,
+                at,
                 cells: values,
             });
         }
         // Rows apply in cycle order; rows of one cycle in file order.
-        rows.sort_by_key(|r| r.cycle);
+        rows.sort_by_key(|r| r.at);
         Ok(Stimulus {
             file: file.to_string(),
             columns,
@@ -224,7 +266,7 @@ mod tests {
             .map(|r| {
                 (
                     r.line,
-                    r.cycle,
+                    r.at.cycle(1).unwrap(),
                     r.cells.iter().map(|c| c.as_deref()).collect(),
                 )
             })
@@ -241,6 +283,18 @@ mod tests {
     }
 
     #[test]
+    fn timed_rows_apply_at_the_cycle_of_their_time() {
+        let st = Stimulus::parse("s.csv", "time,g\nT#20ms,2\n0,1\n1s,9\n").unwrap();
+        let at: Vec<At> = st.rows.iter().map(|r| r.at).collect();
+        let ms = 1_000_000;
+        assert_eq!(at, [At::Time(0), At::Time(20 * ms), At::Time(1000 * ms)]);
+        assert_eq!(at[1].cycle(10 * ms), Some(3));
+        assert_eq!(at[1].cycle(5 * ms), Some(5));
+        assert_eq!(at[1].cycle(15 * ms), None);
+        assert_eq!(at[0].cycle(10 * ms), Some(1));
+    }
+
+    #[test]
     fn malformed_stimulus_files_name_the_line() {
         let e = |text: &str| Stimulus::parse("s.csv", text).unwrap_err().to_string();
         assert_eq!(
@@ -248,8 +302,12 @@ mod tests {
             "s.csv:1: the file is empty: expected a header `cycle,PATH,...`"
         );
         assert_eq!(
-            e("\n\ntime,x\n"),
-            "s.csv:3: the header must start with `cycle`, not `time`"
+            e("\n\nstep,x\n"),
+            "s.csv:3: the header must start with `cycle` or `time`, not `step`"
+        );
+        assert_eq!(
+            e("time,x\nlater,1\n"),
+            "s.csv:2: `later` is not a time (T#0s, T#100ms, 1s...)"
         );
         assert_eq!(
             e("cycle,x,,y\n"),

@@ -68,6 +68,9 @@ pub(crate) struct Body {
     /// Constant propagation: values that local variables certainly hold at
     /// the current statement (seed 001 section 3.3).
     pub known: FxHashMap<VarId, Value>,
+    /// In an Instruction List body: the type of the current result for the
+    /// instruction being checked (`ExprKind::IlCr` has it).
+    pub il_cr: Option<TypeId>,
 }
 
 pub(crate) struct Sema<'a> {
@@ -120,6 +123,9 @@ pub(crate) struct Sema<'a> {
     /// Names declared by constructs reported as not supported (an
     /// INTERFACE...): uses of them are not reported again.
     pub unsupported_names: FxHashSet<Symbol>,
+    /// Operands of IL `S`/`R` that name function block instances (the
+    /// instruction sets that instance's input).
+    pub il_fb_inputs: FxHashSet<ExprId>,
 }
 
 impl<'a> Sema<'a> {
@@ -163,6 +169,7 @@ impl<'a> Sema<'a> {
             partial_index_ok: None,
             global_names: FxHashSet::default(),
             unsupported_names: ast.unsupported_names.iter().map(|n| n.sym).collect(),
+            il_fb_inputs: FxHashSet::default(),
         }
     }
 
@@ -204,6 +211,7 @@ impl<'a> Sema<'a> {
         }
         Analysis {
             implicit_used,
+            il_fb_inputs: self.il_fb_inputs,
             types: self.types,
             pous: self.pous,
             globals: self.globals,

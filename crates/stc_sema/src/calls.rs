@@ -9,7 +9,7 @@
 //! as TRUNC's integer result).
 
 use stc_diagnostics::{Code, Diagnostic, Span};
-use stc_syntax::ast::{Arg, ArgKind, ExprId, ExprKind, PouKind};
+use stc_syntax::ast::{Arg, ArgKind, BinaryOp, ExprId, ExprKind, PouKind};
 use stc_syntax::token::{ElemType, GenericType};
 use stc_values::{Intrinsic, StdFunction, TyPat, Value};
 
@@ -654,22 +654,72 @@ impl<'a> Sema<'a> {
             return TypeId::ERROR;
         }
         let values: Vec<ExprId> = slots.into_iter().flatten().collect();
-        let result = match f.intrinsic {
-            Intrinsic::Add
-            | Intrinsic::Sub
-            | Intrinsic::Mul
-            | Intrinsic::Div
-            | Intrinsic::Mod
-            | Intrinsic::And
-            | Intrinsic::Or
-            | Intrinsic::Xor
-            | Intrinsic::Gt
-            | Intrinsic::Ge
-            | Intrinsic::Eq
-            | Intrinsic::Le
-            | Intrinsic::Lt
-            | Intrinsic::Ne
-            | Intrinsic::Not => self.operator_call(e, f, &values, expected, scope, span),
+        let typed_form = matches!(f.params.first().map(|p| p.ty), Some(TyPat::Elem(_)));
+        let binary_op = match f.intrinsic {
+            Intrinsic::Add => Some(BinaryOp::Add),
+            Intrinsic::Sub => Some(BinaryOp::Sub),
+            Intrinsic::Mul => Some(BinaryOp::Mul),
+            Intrinsic::Div => Some(BinaryOp::Div),
+            _ => None,
+        };
+        let result = match (binary_op, f.intrinsic) {
+            // ADD(a, b) is `a + b` with everything the operator allows
+            // (TIME, TOD, DT and DATE operands: the 2nd edition's Table 30
+            // overloads), checked, converted and folded the same way; the
+            // IR lowers both to the same operation.
+            (Some(op), _) if values.len() == 2 && !typed_form => {
+                let ret = self.binary(e, op, values[0], values[1], expected, scope);
+                if ret != TypeId::ERROR {
+                    let arg_types = values
+                        .iter()
+                        .map(|v| {
+                            self.coercions
+                                .get(v)
+                                .copied()
+                                .unwrap_or(self.expr_types[v.index()])
+                        })
+                        .collect();
+                    let args = (0u32..)
+                        .zip(&values)
+                        .map(|(param, &v)| BoundArg {
+                            param,
+                            kind: crate::BoundArgKind::Input(v),
+                        })
+                        .collect();
+                    self.calls.insert(
+                        e,
+                        CallInfo {
+                            target: CallTarget::Std {
+                                intrinsic: f.intrinsic,
+                                arg_types,
+                                ret,
+                            },
+                            args,
+                            en: None,
+                            eno: None,
+                        },
+                    );
+                }
+                ret
+            }
+            (
+                _,
+                Intrinsic::Add
+                | Intrinsic::Sub
+                | Intrinsic::Mul
+                | Intrinsic::Div
+                | Intrinsic::Mod
+                | Intrinsic::And
+                | Intrinsic::Or
+                | Intrinsic::Xor
+                | Intrinsic::Gt
+                | Intrinsic::Ge
+                | Intrinsic::Eq
+                | Intrinsic::Le
+                | Intrinsic::Lt
+                | Intrinsic::Ne
+                | Intrinsic::Not,
+            ) => self.operator_call(e, f, &values, expected, scope, span),
             _ => self.generic_call(e, f, &values, expected, scope, span),
         };
         // The overloaded TO_<T> converts what the typed S_TO_T would: a pair
@@ -693,6 +743,23 @@ impl<'a> Sema<'a> {
                     self.calls.remove(&e);
                     self.consts.remove(&e);
                     return TypeId::ERROR;
+                }
+                if stc_values::conversion_is_extension(from, to) {
+                    let msg = format!(
+                        "{}_TO_{} is not a conversion of IEC 61131-3",
+                        from.name(),
+                        to.name()
+                    );
+                    let help = if to == ElemType::Bool {
+                        "compare instead: `x <> 0.0`".to_string()
+                    } else {
+                        format!("portable: BOOL_TO_INT, then INT_TO_{}", to.name())
+                    };
+                    self.emit(
+                        Diagnostic::new(Code::W0112, span, msg)
+                            .with_label("accepted: MatIEC, Beremiz and CODESYS have it")
+                            .with_help(help),
+                    );
                 }
             }
         }
@@ -1184,7 +1251,7 @@ impl<'a> Sema<'a> {
                 ExprKind::Index { base, .. } => root = *base,
                 // `p^ := v` and a target that did not parse: reported
                 // already; the names in it are still resolved.
-                ExprKind::Deref(_) | ExprKind::Error => {
+                ExprKind::Deref(_) | ExprKind::Error | ExprKind::IlCr => {
                     self.check_expr(target, Some(TypeId::ERROR), scope);
                     return TypeId::ERROR;
                 }

@@ -127,6 +127,7 @@ impl<'a> Sema<'a> {
             }
             ExprKind::Unary { op, operand } => self.unary(e, *op, *operand, expected, scope),
             ExprKind::Binary { op, lhs, rhs } => self.binary(e, *op, *lhs, *rhs, expected, scope),
+            ExprKind::IlCr => self.body.il_cr.unwrap_or(TypeId::ERROR),
             ExprKind::Deref(base) => {
                 // `p^`: reported by the parser; the pointer itself is used.
                 self.check_expr(*base, Some(TypeId::ERROR), scope);
@@ -1086,7 +1087,7 @@ impl<'a> Sema<'a> {
         }
     }
 
-    fn binary(
+    pub(crate) fn binary(
         &mut self,
         e: ExprId,
         op: BinaryOp,

@@ -142,7 +142,10 @@ impl<'a> Sema<'a> {
             .is_some_and(|t| t != crate::TypeId::ERROR);
         if pou.kind == PouKind::Function && result_known && !partial {
             let mut unassigned_return = false;
-            let end = self.assigns_result(&pou.body, p, false, &mut unassigned_return);
+            let end = match &pou.il {
+                Some(il) => self.il_assigns_result(p, il),
+                None => self.assigns_result(&pou.body, p, false, &mut unassigned_return),
+            };
             if !end || unassigned_return {
                 let name = self.spelled(pou.name.sym, pou.name.span);
                 self.emit(
@@ -230,6 +233,10 @@ impl<'a> Sema<'a> {
             }
         }
         assigned
+    }
+
+    pub(crate) fn is_result_pub(&self, p: PouId, target: ExprId) -> bool {
+        self.is_result(p, target)
     }
 
     fn is_result(&self, p: PouId, target: ExprId) -> bool {

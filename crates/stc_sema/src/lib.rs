@@ -21,6 +21,7 @@ mod decls;
 mod expr;
 mod flow;
 pub mod idx;
+mod il;
 pub mod prelude;
 mod stmt;
 #[cfg(test)]
@@ -297,6 +298,10 @@ pub struct Analysis {
     /// The implicit variables (EN, ENO) that some code refers to: the POU's
     /// own body, or `inst.ENO` outside it. The others need no storage.
     pub implicit_used: rustc_hash::FxHashSet<(PouId, VarId)>,
+    /// Operands of Instruction List `S`/`R` instructions that name function
+    /// block instances: the instruction sets the instance's input (the
+    /// `fb_form` of `IlSem::SetReset`), not the operand itself.
+    pub il_fb_inputs: rustc_hash::FxHashSet<ExprId>,
     pub diagnostics: Vec<Diagnostic>,
 }
 

@@ -54,14 +54,15 @@ VAR M : BOOL; END_VAR
     M := CLK;
 END_FUNCTION_BLOCK
 
-(* Q is TRUE for one call after CLK falls; a CLK that has never been TRUE
-   has not fallen. *)
+(* The standard's body: M (initially FALSE) remembers NOT CLK, so a first
+   call with CLK = FALSE gives Q = TRUE (spec/semantics.md), as MatIEC and
+   TwinCAT do; afterwards Q is TRUE for one call after CLK falls. *)
 FUNCTION_BLOCK F_TRIG
 VAR_INPUT CLK : BOOL; END_VAR
 VAR_OUTPUT Q : BOOL; END_VAR
 VAR M : BOOL; END_VAR
-    Q := NOT CLK AND M;
-    M := CLK;
+    Q := NOT CLK AND NOT M;
+    M := NOT CLK;
 END_FUNCTION_BLOCK
 "#;
 

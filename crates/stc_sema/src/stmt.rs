@@ -17,7 +17,15 @@ impl<'a> Sema<'a> {
         self.resolve_pou(p);
         self.body = Body::default();
         self.stmts(&pou.body, p);
+        if let Some(il) = &pou.il {
+            self.il_body(p, il);
+        }
         self.pou_warnings(p, pou);
+    }
+
+    /// The statements an Instruction List instruction means.
+    pub(crate) fn stmts_pub(&mut self, list: &'a [Stmt], p: PouId) {
+        self.stmts(list, p);
     }
 
     fn stmts(&mut self, list: &'a [Stmt], p: PouId) {

@@ -110,6 +110,10 @@ pub enum ExprKind {
     /// already reported as not supported (E0030). The base is kept so the
     /// variable it names counts as used.
     Deref(ExprId),
+    /// The current result of an Instruction List body (see [`IlInstr`]):
+    /// never written by users, made by the parser where an IL instruction
+    /// reads the accumulator; its type is the one the analyser tracks.
+    IlCr,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
@@ -565,6 +569,8 @@ pub struct Pou {
     pub return_type: Option<TypeSpec>,
     pub var_blocks: Vec<VarBlock>,
     pub body: Vec<Stmt>,
+    /// The body in Instruction List (then `body` is empty).
+    pub il: Option<IlBody>,
     pub span: Span,
     pub pragmas: Vec<Span>,
     /// The base named by `EXTENDS` (reported as not supported): members
@@ -641,4 +647,323 @@ pub enum Item {
     /// A VAR_GLOBAL block outside any configuration (a global variable list
     /// as CODESYS-style projects write them).
     GlobalVars(VarBlock),
+}
+
+// ---------------------------------------------------------------------------
+// Instruction List
+
+/// An Instruction List body (IEC 61131-3 2nd edition 3.2).
+///
+/// Every instruction keeps its surface form (for the printer and the dump)
+/// and its meaning in terms of ST ([`IlSem`]), built by the parser over
+/// [`ExprKind::IlCr`], the current result: `ADD x` means "CR := CR + x",
+/// `ST x` "x := CR", `S x` "IF CR THEN x := TRUE". The analyser checks those
+/// expressions and statements with the ST rules while it tracks the type of
+/// the current result; the IR lowers them like ST, with the current result
+/// in hidden temporaries. Only jumps are IL's own.
+#[derive(Clone, PartialEq, Debug)]
+pub struct IlBody {
+    pub instrs: Vec<IlInstr>,
+    pub span: Span,
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub struct IlInstr {
+    pub label: Option<Ident>,
+    pub op: IlOp,
+    pub span: Span,
+    /// What the instruction does (unused inside a parenthesised sequence
+    /// or a parameter's sequence, which are composed into one expression).
+    pub sem: IlSem,
+}
+
+/// The surface form of one instruction.
+#[derive(Clone, PartialEq, Debug)]
+pub enum IlOp {
+    /// A label alone on its line (or an empty instruction).
+    None,
+    /// `LD x`, `ADD 1`, `NOT`, `S1 inst`.
+    Simple {
+        op: IlOperator,
+        op_span: Span,
+        operand: Option<ExprId>,
+    },
+    /// `AND( x` ... `)`: the operator applied to the result of a nested
+    /// sequence, which starts with the operand when there is one.
+    Paren {
+        op: IlOperator,
+        op_span: Span,
+        operand: Option<ExprId>,
+        body: Vec<IlInstr>,
+    },
+    /// `MAX b, c`: a function called with the current result as its first
+    /// argument.
+    Call { name: Ident, operands: Vec<ExprId> },
+    /// `F(a := 1, b := 2)`: a function called with formal parameters only.
+    FormalCall { name: Ident, args: Vec<IlArg> },
+    /// `CAL inst(...)`, `CALC inst`, `CALCN inst(x, y)`.
+    Cal {
+        op: IlCond,
+        op_span: Span,
+        callee: ExprId,
+        args: Option<IlCallArgs>,
+    },
+    /// `JMP label`, `JMPC label`, `JMPCN label`.
+    Jump {
+        op: IlCond,
+        op_span: Span,
+        target: Ident,
+    },
+    /// `RET`, `RETC`, `RETCN`.
+    Ret { op: IlCond, op_span: Span },
+}
+
+/// The modifier of JMP, CAL and RET: always, if the current result is
+/// TRUE (`C`), if it is FALSE (`CN`).
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
+pub enum IlCond {
+    Always,
+    IfTrue,
+    IfFalse,
+}
+
+impl IlCond {
+    pub fn suffix(self) -> &'static str {
+        match self {
+            IlCond::Always => "",
+            IlCond::IfTrue => "C",
+            IlCond::IfFalse => "CN",
+        }
+    }
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub enum IlCallArgs {
+    /// `(IN := x, Q => y)`, each value an operand or a nested sequence.
+    Formal(Vec<IlArg>),
+    /// `(x, y)`: the inputs in order.
+    Positional(Vec<ExprId>),
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub struct IlArg {
+    pub kind: IlArgKind,
+    pub span: Span,
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub enum IlArgKind {
+    /// `name := operand` or `name := ( sequence )`.
+    Input { name: Ident, value: IlArgValue },
+    /// `name => target`, `NOT name => target`.
+    Output {
+        name: Ident,
+        negated: bool,
+        target: ExprId,
+    },
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub enum IlArgValue {
+    Operand(ExprId),
+    /// A nested sequence; `value` is its result composed into one expression.
+    List {
+        body: Vec<IlInstr>,
+        value: ExprId,
+    },
+}
+
+/// The IL operators that take at most one operand (Tables 51-53).
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
+pub enum IlOperator {
+    Ld,
+    Ldn,
+    St,
+    Stn,
+    Not,
+    S,
+    R,
+    And,
+    Andn,
+    Or,
+    Orn,
+    Xor,
+    Xorn,
+    Add,
+    Sub,
+    Mul,
+    Div,
+    Mod,
+    Gt,
+    Ge,
+    Eq,
+    Ne,
+    Le,
+    Lt,
+    /// The input operators of the standard function blocks: set that
+    /// input of the instance named by the operand to the current result.
+    FbInput(IlFbInput),
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
+pub enum IlFbInput {
+    S1,
+    R1,
+    Clk,
+    Cu,
+    Cd,
+    Pv,
+    In,
+    Pt,
+}
+
+impl IlFbInput {
+    pub const ALL: [IlFbInput; 8] = [
+        IlFbInput::S1,
+        IlFbInput::R1,
+        IlFbInput::Clk,
+        IlFbInput::Cu,
+        IlFbInput::Cd,
+        IlFbInput::Pv,
+        IlFbInput::In,
+        IlFbInput::Pt,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            IlFbInput::S1 => "S1",
+            IlFbInput::R1 => "R1",
+            IlFbInput::Clk => "CLK",
+            IlFbInput::Cu => "CU",
+            IlFbInput::Cd => "CD",
+            IlFbInput::Pv => "PV",
+            IlFbInput::In => "IN",
+            IlFbInput::Pt => "PT",
+        }
+    }
+}
+
+impl IlOperator {
+    pub const PLAIN: [IlOperator; 24] = [
+        IlOperator::Ld,
+        IlOperator::Ldn,
+        IlOperator::St,
+        IlOperator::Stn,
+        IlOperator::Not,
+        IlOperator::S,
+        IlOperator::R,
+        IlOperator::And,
+        IlOperator::Andn,
+        IlOperator::Or,
+        IlOperator::Orn,
+        IlOperator::Xor,
+        IlOperator::Xorn,
+        IlOperator::Add,
+        IlOperator::Sub,
+        IlOperator::Mul,
+        IlOperator::Div,
+        IlOperator::Mod,
+        IlOperator::Gt,
+        IlOperator::Ge,
+        IlOperator::Eq,
+        IlOperator::Ne,
+        IlOperator::Le,
+        IlOperator::Lt,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            IlOperator::Ld => "LD",
+            IlOperator::Ldn => "LDN",
+            IlOperator::St => "ST",
+            IlOperator::Stn => "STN",
+            IlOperator::Not => "NOT",
+            IlOperator::S => "S",
+            IlOperator::R => "R",
+            IlOperator::And => "AND",
+            IlOperator::Andn => "ANDN",
+            IlOperator::Or => "OR",
+            IlOperator::Orn => "ORN",
+            IlOperator::Xor => "XOR",
+            IlOperator::Xorn => "XORN",
+            IlOperator::Add => "ADD",
+            IlOperator::Sub => "SUB",
+            IlOperator::Mul => "MUL",
+            IlOperator::Div => "DIV",
+            IlOperator::Mod => "MOD",
+            IlOperator::Gt => "GT",
+            IlOperator::Ge => "GE",
+            IlOperator::Eq => "EQ",
+            IlOperator::Ne => "NE",
+            IlOperator::Le => "LE",
+            IlOperator::Lt => "LT",
+            IlOperator::FbInput(i) => i.name(),
+        }
+    }
+
+    /// The operator a word names (case-insensitive), if any.
+    pub fn from_word(w: &str) -> Option<IlOperator> {
+        let all = IlOperator::PLAIN
+            .into_iter()
+            .chain(IlFbInput::ALL.into_iter().map(IlOperator::FbInput));
+        all.into_iter().find(|o| o.name().eq_ignore_ascii_case(w))
+    }
+
+    /// The operators that take the `(` modifier (Table 52: the ones that
+    /// combine the current result with an operand).
+    pub fn takes_paren(self) -> bool {
+        self.binary().is_some()
+    }
+
+    /// The ST operator of a combining operator, and whether the operand is
+    /// negated (`ANDN`).
+    pub fn binary(self) -> Option<(BinaryOp, bool)> {
+        Some(match self {
+            IlOperator::And => (BinaryOp::And, false),
+            IlOperator::Andn => (BinaryOp::And, true),
+            IlOperator::Or => (BinaryOp::Or, false),
+            IlOperator::Orn => (BinaryOp::Or, true),
+            IlOperator::Xor => (BinaryOp::Xor, false),
+            IlOperator::Xorn => (BinaryOp::Xor, true),
+            IlOperator::Add => (BinaryOp::Add, false),
+            IlOperator::Sub => (BinaryOp::Sub, false),
+            IlOperator::Mul => (BinaryOp::Mul, false),
+            IlOperator::Div => (BinaryOp::Div, false),
+            IlOperator::Mod => (BinaryOp::Mod, false),
+            IlOperator::Gt => (BinaryOp::Gt, false),
+            IlOperator::Ge => (BinaryOp::Ge, false),
+            IlOperator::Eq => (BinaryOp::Eq, false),
+            IlOperator::Ne => (BinaryOp::Ne, false),
+            IlOperator::Le => (BinaryOp::Le, false),
+            IlOperator::Lt => (BinaryOp::Lt, false),
+            _ => return None,
+        })
+    }
+}
+
+/// What an instruction means, over the current result.
+#[derive(Clone, PartialEq, Debug)]
+pub enum IlSem {
+    /// Nothing (a label alone).
+    Nothing,
+    /// The current result becomes this value (`LD`, `ADD`, a function call).
+    Load(ExprId),
+    /// Statements run with the current result as it is (`ST`, `S`, `R`,
+    /// the FB input operators, `CAL`, `RET`); after them the current
+    /// result keeps its value, except after a call (`undefined_after`).
+    Effect {
+        stmts: Vec<Stmt>,
+        undefined_after: bool,
+    },
+    /// `S x` / `R x`: set or reset the BOOL `x` if the current result is
+    /// TRUE (`bool_form`), or, when `x` names a function block instance,
+    /// its input `S` or `R` to the current result (`fb_form`, as the input
+    /// operators do); the analyser decides which from the type of `x`.
+    SetReset {
+        operand: ExprId,
+        bool_form: Vec<Stmt>,
+        fb_form: Vec<Stmt>,
+    },
+    /// A jump, if `cond` (the current result, or its negation) holds.
+    Jump { cond: Option<ExprId>, target: Ident },
 }

@@ -123,6 +123,18 @@ impl Dumper<'_> {
             }
             d.line(p.span, "Body");
             d.nested(|d| d.stmts(&p.body));
+            if let Some(il) = &p.il {
+                d.line(il.span, "IlBody");
+                let mut lines = Vec::new();
+                crate::print::il_lines(&il.instrs, d.interner, &|e| d.expr(e), 0, &mut lines);
+                d.nested(|d| {
+                    for l in lines {
+                        d.indent += l.depth;
+                        d.line(l.span, &l.text);
+                        d.indent -= l.depth;
+                    }
+                });
+            }
         });
     }
 
@@ -504,6 +516,7 @@ impl Dumper<'_> {
             }
             ExprKind::Paren(inner) => format!("(paren {})", self.expr(*inner)),
             ExprKind::Deref(base) => format!("(deref {})", self.expr(*base)),
+            ExprKind::IlCr => "<CR>".into(),
         }
     }
 }

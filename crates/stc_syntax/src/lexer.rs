@@ -252,27 +252,32 @@ impl<'a> Lexer<'a> {
 
     fn check_identifier(&mut self, start: usize, non_ascii: bool) {
         let word = &self.text[start..self.pos];
+        // Doubled and trailing underscores are forbidden by the standard but
+        // accepted by every tool and common in real code: a warning.
         let problem = if non_ascii {
-            Some("identifiers may contain only ASCII letters, digits and `_`")
+            Some((
+                Code::E0005,
+                "identifiers may contain only ASCII letters, digits and `_`",
+            ))
         } else if word.contains("__") {
-            Some("identifiers must not contain two underscores in a row")
+            Some((Code::W0008, "IEC 61131-3 forbids two underscores in a row"))
         } else if word.ends_with('_') {
-            Some("identifiers must not end with an underscore")
+            Some((Code::W0008, "IEC 61131-3 forbids a trailing underscore"))
         } else {
             None
         };
-        if let Some(p) = problem {
+        if let Some((code, p)) = problem {
             let key = word.to_ascii_lowercase();
             if self.bad_idents.contains(&key) {
                 return;
             }
             self.bad_idents.push(key);
-            self.error(
-                Code::E0005,
-                start,
-                self.pos,
-                format!("invalid identifier `{word}`: {p}"),
-            );
+            let message = if code == Code::E0005 {
+                format!("invalid identifier `{word}`: {p}")
+            } else {
+                format!("identifier `{word}` accepted: {p}")
+            };
+            self.error(code, start, self.pos, message);
         }
     }
 
@@ -622,7 +627,7 @@ mod tests {
     fn bad_identifiers_and_characters() {
         let l = lex("a__b c_ ? d", 0);
         let codes: Vec<_> = l.diagnostics.iter().map(|d| d.code).collect();
-        assert_eq!(codes, vec![Code::E0005, Code::E0005, Code::E0001]);
+        assert_eq!(codes, vec![Code::W0008, Code::W0008, Code::E0001]);
         let l = lex("grüße := 1;", 0);
         assert_eq!(l.diagnostics.len(), 1);
         assert_eq!(l.tokens[0].kind, TokenKind::Ident);

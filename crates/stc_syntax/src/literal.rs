@@ -317,7 +317,9 @@ fn parse_date_part(s: &str, text: &str) -> Result<i64, LitError> {
 
 fn parse_tod_part(s: &str, text: &str) -> Result<u64, LitError> {
     let mut it = s.splitn(3, ':');
-    let (Some(h), Some(m), Some(sec)) = (it.next(), it.next(), it.next()) else {
+    // `HH:MM` without seconds (CODESYS, TwinCAT) means `HH:MM:00`; the
+    // parser warns about it (W0007, [`lacks_seconds`]).
+    let (Some(h), Some(m), Some(sec)) = (it.next(), it.next(), it.next().or(Some("0"))) else {
         return err(
             Code::E0008,
             format!("malformed time of day `{text}`: expected HH:MM:SS"),
@@ -343,6 +345,17 @@ fn parse_tod_part(s: &str, text: &str) -> Result<u64, LitError> {
         ns += digits.parse::<u64>().unwrap_or(0) * 1_000_000_000 / scale;
     }
     Ok(ns)
+}
+
+/// Whether a TOD or DT literal leaves out the seconds (`TOD#09:00`,
+/// `DT#2024-01-31-09:00`): accepted as zero seconds, with a warning.
+pub fn lacks_seconds(text: &str) -> bool {
+    let b = body(text).1;
+    let tod = match b.match_indices('-').nth(2) {
+        Some((i, _)) => &b[i + 1..],
+        None => b,
+    };
+    tod.matches(':').count() == 1
 }
 
 /// `D#2024-01-31` to seconds since 1970-01-01.
@@ -833,6 +846,14 @@ mod tests {
             Ok((12 * 3600 + 30 * 60) * 1_000_000_000 + 500_000_000)
         );
         assert_eq!(parse_tod("TOD#25:00:00").unwrap_err().code, Code::E0008);
+        assert_eq!(parse_tod("TOD#09:30"), parse_tod("TOD#09:30:00"));
+        assert_eq!(
+            parse_dt("DT#2024-01-31-9:30"),
+            parse_dt("DT#2024-01-31-09:30:00")
+        );
+        assert!(lacks_seconds("TIME_OF_DAY#9:00") && lacks_seconds("DT#2024-01-31-09:00"));
+        assert!(!lacks_seconds("TOD#09:00:00") && !lacks_seconds("DT#2024-01-31-09:00:00"));
+        assert!(parse_tod("TOD#09").is_err() && parse_tod("TOD#09:00.5").is_err());
         let dt = parse_dt("DT#2024-01-31-12:30:00").unwrap();
         assert_eq!(format_dt(dt, false), "DT#2024-01-31-12:30:00");
         assert_eq!(

@@ -144,6 +144,15 @@ impl Printer<'_> {
                 p.var_block(b);
             }
             p.stmts(&pou.body);
+            if let Some(il) = &pou.il {
+                let mut lines = Vec::new();
+                il_lines(&il.instrs, p.interner, &|e| p.expr(e, 0), 0, &mut lines);
+                for l in lines {
+                    p.indent += l.depth;
+                    p.line(&l.text);
+                    p.indent -= l.depth;
+                }
+            }
         });
         self.line(pou.kind.end_keyword());
     }
@@ -573,6 +582,8 @@ impl Printer<'_> {
             }
             ExprKind::Paren(inner) => (format!("({})", self.expr(*inner, 0)), POSTFIX),
             ExprKind::Deref(base) => (format!("{}^", self.expr(*base, POSTFIX)), POSTFIX),
+            // (Only in the meaning of IL instructions, which print as IL.)
+            ExprKind::IlCr => ("(* current result *) 0".into(), POSTFIX),
         };
         if prec < ctx {
             format!("({text})")
@@ -588,4 +599,164 @@ fn contains_struct(t: &TypeSpec) -> bool {
         TypeSpecKind::Array { elem, .. } => contains_struct(elem),
         _ => false,
     }
+}
+
+/// One line of an Instruction List body as text: its nesting depth, the
+/// text and the span of the instruction it comes from.
+pub(crate) struct IlLine {
+    pub depth: usize,
+    pub text: String,
+    pub span: Span,
+}
+
+/// The lines of an IL instruction list, with operands written by
+/// `operand` (ST text for the printer, S-expressions for the dump).
+pub(crate) fn il_lines(
+    instrs: &[IlInstr],
+    interner: &Interner,
+    operand: &dyn Fn(ExprId) -> String,
+    depth: usize,
+    out: &mut Vec<IlLine>,
+) {
+    let name = |i: Ident| interner.spelling(i.sym).to_string();
+    for ins in instrs {
+        let label = ins
+            .label
+            .map(|l| format!("{}: ", name(l)))
+            .unwrap_or_default();
+        let mut line = |d: usize, text: String| {
+            out.push(IlLine {
+                depth: d,
+                text,
+                span: ins.span,
+            })
+        };
+        match &ins.op {
+            IlOp::None => line(depth, label.trim_end().to_string()),
+            IlOp::Simple { op, operand: o, .. } => {
+                let o = o.map(|o| format!(" {}", operand(o))).unwrap_or_default();
+                line(depth, format!("{label}{}{o}", op.name()));
+            }
+            IlOp::Paren {
+                op,
+                operand: o,
+                body,
+                ..
+            } => {
+                let o = o.map(|o| format!(" {}", operand(o))).unwrap_or_default();
+                line(depth, format!("{label}{}({o}", op.name()));
+                il_lines(body, interner, operand, depth + 1, out);
+                out.push(IlLine {
+                    depth,
+                    text: ")".into(),
+                    span: ins.span,
+                });
+            }
+            IlOp::Call { name: n, operands } => {
+                let os: Vec<String> = operands.iter().map(|o| operand(*o)).collect();
+                let sep = if os.is_empty() { "" } else { " " };
+                line(depth, format!("{label}{}{sep}{}", name(*n), os.join(", ")));
+            }
+            IlOp::FormalCall { name: n, args } => {
+                let head = format!("{label}{}", name(*n));
+                il_formal_lines(head, args, interner, operand, depth, ins.span, out);
+            }
+            IlOp::Cal {
+                op, callee, args, ..
+            } => {
+                let head = format!("{label}CAL{} {}", op.suffix(), operand(*callee));
+                match args {
+                    None => line(depth, head),
+                    Some(IlCallArgs::Positional(list)) => {
+                        let os: Vec<String> = list.iter().map(|o| operand(*o)).collect();
+                        line(depth, format!("{head}({})", os.join(", ")));
+                    }
+                    Some(IlCallArgs::Formal(args)) => {
+                        il_formal_lines(head, args, interner, operand, depth, ins.span, out)
+                    }
+                }
+            }
+            IlOp::Jump { op, target, .. } => line(
+                depth,
+                format!("{label}JMP{} {}", op.suffix(), name(*target)),
+            ),
+            IlOp::Ret { op, .. } => line(depth, format!("{label}RET{}", op.suffix())),
+        }
+    }
+}
+
+/// `head(a := x, q => y)`, spread over lines when a value is a sequence.
+fn il_formal_lines(
+    head: String,
+    args: &[IlArg],
+    interner: &Interner,
+    operand: &dyn Fn(ExprId) -> String,
+    depth: usize,
+    span: Span,
+    out: &mut Vec<IlLine>,
+) {
+    let name = |i: Ident| interner.spelling(i.sym).to_string();
+    let simple = |a: &IlArg| match &a.kind {
+        IlArgKind::Input {
+            name: n,
+            value: IlArgValue::Operand(v),
+        } => Some(format!("{} := {}", name(*n), operand(*v))),
+        IlArgKind::Output {
+            name: n,
+            negated,
+            target,
+        } => {
+            let not = if *negated { "NOT " } else { "" };
+            Some(format!("{not}{} => {}", name(*n), operand(*target)))
+        }
+        IlArgKind::Input { .. } => None,
+    };
+    if let Some(all) = args.iter().map(simple).collect::<Option<Vec<_>>>() {
+        out.push(IlLine {
+            depth,
+            text: format!("{head}({})", all.join(", ")),
+            span,
+        });
+        return;
+    }
+    out.push(IlLine {
+        depth,
+        text: format!("{head}("),
+        span,
+    });
+    for (i, a) in args.iter().enumerate() {
+        let comma = if i + 1 < args.len() { "," } else { "" };
+        match (simple(a), &a.kind) {
+            (Some(t), _) => out.push(IlLine {
+                depth: depth + 1,
+                text: format!("{t}{comma}"),
+                span,
+            }),
+            (
+                None,
+                IlArgKind::Input {
+                    name: n,
+                    value: IlArgValue::List { body, .. },
+                },
+            ) => {
+                out.push(IlLine {
+                    depth: depth + 1,
+                    text: format!("{} := (", name(*n)),
+                    span,
+                });
+                il_lines(body, interner, operand, depth + 2, out);
+                out.push(IlLine {
+                    depth: depth + 1,
+                    text: format!("){comma}"),
+                    span,
+                });
+            }
+            (None, _) => {}
+        }
+    }
+    out.push(IlLine {
+        depth,
+        text: ")".into(),
+        span,
+    });
 }

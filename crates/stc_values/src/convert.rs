@@ -78,7 +78,8 @@ pub fn conversion_may_fault(from: ElemType, to: ElemType) -> bool {
         (Cat::Real, Cat::Int | Cat::Dur) => true,
         (Cat::Char, Cat::Char) => to == E::Char,
         (Cat::Date, Cat::Dt) => true,
-        (Cat::Real, Cat::Real) | (Cat::Int, Cat::Real) => false,
+        (Cat::Real, Cat::Real) | (Cat::Int | Cat::Bool, Cat::Real) => false,
+        (Cat::Real, Cat::Bool) => false,
         (Cat::Bool | Cat::Int, Cat::Bool) => false,
         (Cat::Bool | Cat::Int | Cat::Char, Cat::Int | Cat::Char) => false,
         (Cat::Dur, Cat::Dur | Cat::Int | Cat::Real | Cat::Tod) => false,
@@ -112,8 +113,21 @@ pub fn conversion_allowed(from: ElemType, to: ElemType) -> bool {
         (Date, Date) | (Tod, Tod) | (Dt, Dt) => true,
         (Dt, Date | Tod) | (Date, Dt) | (Tod, Dur) => true,
         (Char, Int | Char) | (Int, Char) => true,
+        // Not in the standard, but in MatIEC, Beremiz and CODESYS
+        // ([`conversion_is_extension`]).
+        (Bool, Real) | (Real, Bool) => true,
         _ => false,
     }
+}
+
+/// Whether `FROM_TO_TO` is one of the conversions stc provides beyond the
+/// standard's (BOOL_TO_REAL, BOOL_TO_LREAL, REAL_TO_BOOL, LREAL_TO_BOOL):
+/// the analyser warns about them (W0112).
+pub fn conversion_is_extension(from: ElemType, to: ElemType) -> bool {
+    matches!(
+        (cat(from), cat(to)),
+        (Cat::Bool, Cat::Real) | (Cat::Real, Cat::Bool)
+    )
 }
 
 /// Explicit or implicit conversion of `v` from type `from` to type `to`
@@ -133,6 +147,9 @@ pub fn convert(from: ElemType, to: ElemType, v: &Value) -> Result<Value, Fault> 
         }
         (Real, Int) => real_to_int(to, real(v)?, f64::round_ties_even),
         (Int, Real) => Ok(Value::Real(int_to_real(to, int(v)?))),
+        // BOOL is 0 or 1; a real is TRUE when it is not zero (NaN too).
+        (Bool, Real) => Ok(Value::Real(if int(v)? != 0 { 1.0 } else { 0.0 })),
+        (Real, Bool) => Ok(Value::Bool(real(v)? != 0.0)),
         (Bool | Int, Bool) => Ok(Value::Bool(int(v)? != 0)),
         (Char, Char) => {
             let c = int(v)?;
@@ -396,7 +413,14 @@ fn to_string_value(from: ElemType, to: ElemType, v: &Value) -> Result<Value, Fau
             }
         }
         _ => {
-            let text = to_text(from, v);
+            let mut text = to_text(from, v);
+            if crate::is_time_like(from) {
+                // *_TO_STRING gives the literal without its type prefix
+                // (spec/semantics.md): `1s500ms`, not `T#1s500ms`.
+                if let Some((_, body)) = text.split_once('#') {
+                    text = body.to_string();
+                }
+            }
             Ok(if wide {
                 Value::wstring(&text)
             } else {
@@ -698,8 +722,32 @@ mod tests {
         assert_eq!(conv(E::Int, E::String, i(-42)), Ok(s("-42")));
         assert_eq!(conv(E::Bool, E::String, Value::Bool(true)), Ok(s("TRUE")));
         assert_eq!(conv(E::Real, E::String, r(0.1f32 as f64)), Ok(s("0.1")));
-        assert_eq!(conv(E::Time, E::String, i(1500 * MS)), Ok(s("T#1s500ms")));
-        assert_eq!(conv(E::Time, E::Wstring, i(0)), Ok(Value::wstring("T#0s")));
+        assert_eq!(conv(E::Time, E::String, i(1500 * MS)), Ok(s("1s500ms")));
+        assert_eq!(
+            conv(E::Bool, E::Real, Value::Bool(true)),
+            Ok(Value::Real(1.0))
+        );
+        assert_eq!(
+            conv(E::Bool, E::Lreal, Value::Bool(false)),
+            Ok(Value::Real(0.0))
+        );
+        assert_eq!(
+            conv(E::Real, E::Bool, Value::Real(-0.5)),
+            Ok(Value::Bool(true))
+        );
+        assert_eq!(
+            conv(E::Lreal, E::Bool, Value::Real(0.0)),
+            Ok(Value::Bool(false))
+        );
+        assert_eq!(
+            conv(E::Lreal, E::Bool, Value::Real(f64::NAN)),
+            Ok(Value::Bool(true))
+        );
+        assert_eq!(conv(E::Time, E::String, i(-2000 * MS)), Ok(s("-2s")));
+        assert_eq!(conv(E::Date, E::String, i(86_400)), Ok(s("1970-01-02")));
+        assert_eq!(conv(E::Tod, E::String, i(1500 * MS)), Ok(s("00:00:01.5")));
+        assert_eq!(conv(E::Dt, E::String, i(0)), Ok(s("1970-01-01-00:00:00")));
+        assert_eq!(conv(E::Time, E::Wstring, i(0)), Ok(Value::wstring("0s")));
         assert_eq!(conv(E::String, E::Int, s(" 42 ")), Ok(i(42)));
         assert_eq!(conv(E::String, E::Int, s("x")), Err(Fault::Conversion));
         assert_eq!(

@@ -32,7 +32,8 @@ pub use stc_syntax::token::{ElemType, GenericType};
 
 pub use call::{call, split, split_lookup};
 pub use convert::{
-    bcd_to_int, conversion_allowed, conversion_may_fault, convert, int_to_bcd, trunc,
+    bcd_to_int, conversion_allowed, conversion_is_extension, conversion_may_fault, convert,
+    int_to_bcd, trunc,
 };
 pub use ops::{binary, unary};
 pub use stdfn::{all, lookup, Intrinsic, Param, StdFunction, TyPat};

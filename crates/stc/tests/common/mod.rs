@@ -36,7 +36,7 @@ fn collect(dir: &Path, out: &mut Vec<PathBuf>) {
             } else if p.file_name().is_some_and(|n| n != "snapshots") {
                 collect(&p, out);
             }
-        } else if p.extension().is_some_and(|x| x == "st") {
+        } else if p.extension().is_some_and(|x| x == "st" || x == "il") {
             out.push(p);
         }
     }
@@ -49,7 +49,7 @@ pub fn case_files(case: &Path) -> Vec<PathBuf> {
             .unwrap()
             .flatten()
             .map(|e| e.path())
-            .filter(|p| p.extension().is_some_and(|x| x == "st"))
+            .filter(|p| p.extension().is_some_and(|x| x == "st" || x == "il"))
             .collect();
         files.sort();
         files

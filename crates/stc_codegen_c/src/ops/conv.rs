@@ -80,8 +80,8 @@ fn scalar(e: &mut dyn Emit, from: ElemType, to: ElemType, a: &Val, dst: &Val, si
     match (cat(from), cat(to)) {
         (C::Real, C::Real) => set(e, dst, &format!("({}){pa}", rt.ctype())),
         (C::Real, C::Int) => real_to_int(e, a, to, dst, false),
-        (C::Int, C::Real) => set(e, dst, &format!("({}){pa}", rt.ctype())),
-        (C::Bool | C::Int, C::Bool) => {
+        (C::Int | C::Bool, C::Real) => set(e, dst, &format!("({}){pa}", rt.ctype())),
+        (C::Bool | C::Int | C::Real, C::Bool) => {
             let z = super::c::zero(rf);
             set(e, dst, &format!("({pa} != {z}) ? 1U : 0U"))
         }

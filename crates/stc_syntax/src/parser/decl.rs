@@ -64,10 +64,27 @@ impl Parser<'_> {
     }
 
     fn expect_decl_semi(&mut self) {
-        if !self.eat(TokenKind::Semi) {
-            self.expected("`;`");
-            self.skip_decl();
+        if self.eat(TokenKind::Semi) {
+            return;
         }
+        if self.at_kw(Keyword::EndType) && self.prev().kind == TokenKind::Kw(Keyword::EndStruct) {
+            // `END_STRUCT END_TYPE`: CODESYS and TwinCAT write no `;` there.
+            let end = self.prev();
+            let d = Diagnostic::new(Code::W0004, end.span(), "missing `;` after `END_STRUCT`")
+                .with_label("`;` expected after this")
+                .with_help("add `;`: IEC 61131-3 ends every type declaration with it");
+            self.report_always(d);
+            return;
+        }
+        if matches!(
+            self.kind(),
+            TokenKind::Kw(Keyword::EndType | Keyword::EndVar | Keyword::EndStruct)
+        ) {
+            self.missing_semi_before_end();
+            return;
+        }
+        self.expected("`;`");
+        self.skip_decl();
     }
 
     // ----- POUs -----------------------------------------------------------
@@ -140,17 +157,9 @@ impl Parser<'_> {
             }
         }
         let mut body = Vec::new();
+        let mut il = None;
         if self.at_il_body() {
-            let span = self.tok().span();
-            self.unsupported(span, "Instruction List bodies are");
-            self.pou_partial = true;
-            while !self.at(TokenKind::Eof)
-                && !is_item_end(self.kind())
-                && !is_item_start(self.kind())
-            {
-                self.bump();
-            }
-            self.superseded.push(span.to(self.prev().span()));
+            il = Some(self.il_body());
         } else {
             body = self.stmt_list(false);
         }
@@ -200,6 +209,7 @@ impl Parser<'_> {
             return_type,
             var_blocks,
             body,
+            il,
             span: opener.to(self.prev().span()),
             pragmas,
             extends,
@@ -362,7 +372,7 @@ impl Parser<'_> {
         let items = match kind {
             VarKind::Access => VarBlockItems::Access(self.decl_list(Self::access_decl)),
             VarKind::Config => VarBlockItems::Config(self.decl_list(Self::config_init)),
-            _ => VarBlockItems::Vars(self.decl_list(|p| p.var_decl(false))),
+            _ => VarBlockItems::Vars(self.decl_list(|p| p.var_decl())),
         };
         if !self.eat_kw(Keyword::EndVar) {
             self.expected("`END_VAR`");
@@ -438,7 +448,7 @@ impl Parser<'_> {
     }
 
     /// `a, b AT %IX0.0 : T R_EDGE := init;` (in a STRUCT: `member : T := init;`).
-    pub(crate) fn var_decl(&mut self, in_struct: bool) -> Option<VarDecl> {
+    pub(crate) fn var_decl(&mut self) -> Option<VarDecl> {
         let start = self.tok().span();
         let pragmas = self.take_pragmas(start.lo);
         let mut names = Vec::new();
@@ -484,16 +494,12 @@ impl Parser<'_> {
             None
         };
         let init = if self.eat(TokenKind::Assign) {
-            Some(self.init())
+            Some(self.decl_init(&ty))
         } else {
             None
         };
         let span = start.to(self.prev().span());
-        if in_struct && self.at_kw(Keyword::EndStruct) {
-            self.expected("`;`");
-        } else {
-            self.expect_decl_semi();
-        }
+        self.expect_decl_semi();
         Some(VarDecl {
             names,
             location,
@@ -579,7 +585,7 @@ impl Parser<'_> {
         }
         let ty = self.type_spec();
         let init = if self.eat(TokenKind::Assign) {
-            Some(self.init())
+            Some(self.decl_init(&ty))
         } else {
             None
         };
@@ -724,7 +730,7 @@ impl Parser<'_> {
             TokenKind::Kw(Keyword::Array) => self.array_spec(),
             TokenKind::Kw(Keyword::Struct) => {
                 self.bump();
-                let members = self.decl_list(|p| p.var_decl(true));
+                let members = self.decl_list(|p| p.var_decl());
                 if !self.eat_kw(Keyword::EndStruct) {
                     self.expected("`END_STRUCT`");
                 }
@@ -832,8 +838,56 @@ impl Parser<'_> {
 
     fn array_init(&mut self) -> InitKind {
         self.bump(); // [
+        let elems = if self.at(TokenKind::RBracket) {
+            Vec::new()
+        } else {
+            self.array_init_elems()
+        };
+        self.expect(TokenKind::RBracket);
+        InitKind::Array(elems)
+    }
+
+    /// The initial value of a declaration of type `ty`. An array's values
+    /// without brackets (`:= 2, 2, 3;`, CODESYS 2.3) are read as the
+    /// bracketed list, with W0006.
+    fn decl_init(&mut self, ty: &TypeSpec) -> Init {
+        let is_array = matches!(ty.kind, TypeSpecKind::Array { .. });
+        if !is_array || self.at(TokenKind::LBracket) {
+            return self.init();
+        }
+        let start = self.tok().span();
+        if !self.enter() {
+            let e = self.error_expr(start);
+            return Init {
+                kind: InitKind::Expr(e),
+                span: start,
+            };
+        }
+        let mut elems = self.array_init_elems();
+        self.leave();
+        let span = start.to(self.prev().span());
+        if elems.len() == 1 && elems[0].repeat.is_none() {
+            // One value: an ordinary initial value (the analyser says
+            // whether it fits an array).
+            if let Some(value) = elems.pop().and_then(|e| e.values.into_iter().next()) {
+                return value;
+            }
+        }
+        let d = Diagnostic::new(Code::W0006, span, "array initial values without brackets")
+            .with_label("read as `[...]`")
+            .with_help("write the values in brackets: `:= [...]`");
+        self.report_always(d);
+        Init {
+            kind: InitKind::Array(elems),
+            span,
+        }
+    }
+
+    /// The comma-separated elements of an array initial value, each a value
+    /// or a repetition `n(values)`.
+    fn array_init_elems(&mut self) -> Vec<ArrayInitElem> {
         let mut elems = Vec::new();
-        if !self.at(TokenKind::RBracket) {
+        {
             loop {
                 let start = self.tok().span();
                 if matches!(self.kind(), TokenKind::Int | TokenKind::BasedInt)
@@ -869,8 +923,7 @@ impl Parser<'_> {
                 }
             }
         }
-        self.expect(TokenKind::RBracket);
-        InitKind::Array(elems)
+        elems
     }
 
     /// The repetition count of `3(0)`: just the integer literal.
@@ -935,7 +988,7 @@ impl Parser<'_> {
                 if self.expect(TokenKind::Colon) {
                     let spec = self.type_spec();
                     let init = if self.eat(TokenKind::Assign) {
-                        Some(self.init())
+                        Some(self.decl_init(&spec))
                     } else {
                         None
                     };

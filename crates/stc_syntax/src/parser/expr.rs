@@ -322,6 +322,15 @@ impl Parser<'_> {
     fn literal_value(&mut self, negative: bool) -> Result<LitValue, LitError> {
         let t = self.bump();
         let text = self.text_of(t);
+        if matches!(t.kind, TokenKind::Tod | TokenKind::Dt) && literal::lacks_seconds(text) {
+            let d = Diagnostic::new(
+                Code::W0007,
+                t.span(),
+                format!("`{text}` has no seconds; read as zero seconds"),
+            )
+            .with_help("write the seconds: IEC 61131-3 requires HH:MM:SS");
+            self.report_always(d);
+        }
         Ok(match t.kind {
             TokenKind::Int => LitValue::Int {
                 value: literal::parse_int(text)?,

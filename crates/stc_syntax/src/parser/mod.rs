@@ -17,6 +17,7 @@
 
 mod decl;
 mod expr;
+mod il;
 mod stmt;
 
 use stc_diagnostics::{Code, Diagnostic, Span};
@@ -57,6 +58,13 @@ fn third_edition_word(k: TokenKind) -> bool {
                 | ElemType::Ldt
         ) | TokenKind::Kw(Keyword::Continue)
     )
+}
+
+/// Reserved words that 2nd-edition code uses as names and whose use as a
+/// name is unambiguous: the 3rd edition's new words, and the edge
+/// qualifiers, which only mean something after a declaration's type.
+fn soft_reserved_word(k: TokenKind) -> bool {
+    third_edition_word(k) || matches!(k, TokenKind::Kw(Keyword::REdge | Keyword::FEdge))
 }
 
 /// [`parse_file`] for an edition: with `iec2`, the words the 3rd edition
@@ -117,7 +125,7 @@ pub fn parse_file_in(
     // identifier: one diagnostic for the one construct.
     let superseded = std::mem::take(&mut p.superseded);
     diagnostics.retain(|d| {
-        d.code != Code::E0005
+        !matches!(d.code, Code::E0005 | Code::W0008)
             || !superseded
                 .iter()
                 .any(|s| s.lo <= d.span.lo && d.span.hi <= s.hi)
@@ -128,7 +136,7 @@ pub fn parse_file_in(
         .iter()
         .filter(|s| text.as_bytes()[(s.hi - base) as usize - 1] == b'}')
     {
-        diagnostics.push(pragma_diagnostic(
+        diagnostics.extend(pragma_diagnostic(
             *span,
             &text[(span.lo - base) as usize..(span.hi - base) as usize],
         ));
@@ -140,19 +148,17 @@ pub fn parse_file_in(
     }
 }
 
-fn pragma_diagnostic(span: Span, text: &str) -> Diagnostic {
+/// What an ignored pragma is worth saying: nothing for the CODESYS/TwinCAT
+/// `{attribute '...'}` pragmas (they tune the vendor's IDE, compiler or HMI
+/// and never change what a program computes), W0002 for anything else.
+fn pragma_diagnostic(span: Span, text: &str) -> Option<Diagnostic> {
     let inner = text.trim_start_matches('{').trim_end_matches('}').trim();
     let word: String = inner
         .chars()
         .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
         .collect();
     if word.eq_ignore_ascii_case("attribute") {
-        Diagnostic::new(
-            Code::E0030,
-            span,
-            "`{attribute ...}` pragmas are not supported yet",
-        )
-        .with_label("not supported yet")
+        None
     } else {
         // The first line, shortened: a message is one line.
         let first = text.lines().next().unwrap_or("");
@@ -162,11 +168,11 @@ fn pragma_diagnostic(span: Span, text: &str) -> Diagnostic {
         if shown.len() < first.len() || text.trim_end().contains('\n') {
             shown.push_str(" …");
         }
-        Diagnostic::new(
+        Some(Diagnostic::new(
             Code::W0002,
             span,
             format!("pragma `{shown}` is not understood and is ignored"),
-        )
+        ))
     }
 }
 
@@ -507,15 +513,41 @@ impl<'a> Parser<'a> {
             k if k.is_reserved_word()
                 && (self.reserved_name_plausible() || !starts_construct(k)) =>
             {
-                let d = Diagnostic::new(
-                    Code::E0022,
-                    t.span(),
-                    format!(
-                        "`{}` is a reserved word and cannot be used as a name",
-                        self.text_of(t)
-                    ),
-                )
-                .with_label("reserved word");
+                let d = if third_edition_word(k) {
+                    // Reserved only by the 3rd edition: a name in older code.
+                    Diagnostic::new(
+                        Code::W0009,
+                        t.span(),
+                        format!(
+                            "`{}` is reserved in IEC 61131-3 3rd edition; accepted as a name",
+                            self.text_of(t)
+                        ),
+                    )
+                    .with_label("3rd-edition word")
+                    .with_help("this looks like 2nd-edition code: use --std iec2")
+                } else if soft_reserved_word(k) {
+                    // An edge qualifier only means something after a
+                    // declaration's type: as a name it is unambiguous.
+                    Diagnostic::new(
+                        Code::W0009,
+                        t.span(),
+                        format!(
+                            "`{}` is an edge qualifier; accepted as a name",
+                            self.text_of(t)
+                        ),
+                    )
+                    .with_label("reserved word")
+                } else {
+                    Diagnostic::new(
+                        Code::E0022,
+                        t.span(),
+                        format!(
+                            "`{}` is a reserved word and cannot be used as a name",
+                            self.text_of(t)
+                        ),
+                    )
+                    .with_label("reserved word")
+                };
                 self.report(d);
                 if !self.reserved_names.contains(&k) {
                     self.reserved_names.push(k);

@@ -89,6 +89,16 @@ impl Parser<'_> {
         if self.eat(TokenKind::Semi) {
             return;
         }
+        if ends_stmt_list(self.kind()) && self.kind() != TokenKind::Eof {
+            // `x := 1 END_IF`: CODESYS and TwinCAT accept the last `;` of a
+            // list left out; nothing is ambiguous, so read on with a warning
+            // (none when the keyword closes the wrong block, or this
+            // statement already has its error: that is the one to fix).
+            if self.closes_innermost(self.kind()) && self.last_error_pos != self.pos {
+                self.missing_semi_before_end();
+            }
+            return;
+        }
         if self.newline_between(self.prev(), self.tok()) {
             let prev = self.prev().span().shrink_to_hi();
             let d = Diagnostic::new(
@@ -175,8 +185,63 @@ impl Parser<'_> {
         let kind = f(self);
         self.leave();
         let span = start.to(self.prev().span());
-        self.expect_semi();
+        let closed = matches!(
+            self.prev().kind,
+            TokenKind::Kw(
+                Keyword::EndIf
+                    | Keyword::EndCase
+                    | Keyword::EndFor
+                    | Keyword::EndWhile
+                    | Keyword::EndRepeat
+            )
+        );
+        if closed && !self.at(TokenKind::Semi) && !self.at(TokenKind::Eof) {
+            // `END_IF` without its `;`, as CODESYS, TwinCAT and RuSTy
+            // accept: the block is complete, so the next token starts the
+            // next statement (or closes the list) whatever it is.
+            let end = self.prev();
+            let d = Diagnostic::new(
+                Code::W0004,
+                end.span(),
+                format!("missing `;` after `{}`", self.text_of(end)),
+            )
+            .with_label("`;` expected after this")
+            .with_help("add `;`: IEC 61131-3 ends every statement with it");
+            self.report_always(d);
+        } else {
+            self.expect_semi();
+        }
         Some(Stmt { kind, span })
+    }
+
+    /// Whether `k` closes (or continues) the innermost open block, or the
+    /// POU when no block is open.
+    fn closes_innermost(&self, k: TokenKind) -> bool {
+        let TokenKind::Kw(kw) = k else {
+            return false;
+        };
+        match self.open.last() {
+            Some(Open::If) => matches!(kw, Keyword::EndIf | Keyword::Else | Keyword::Elsif),
+            Some(Open::Case) => matches!(kw, Keyword::EndCase | Keyword::Else),
+            Some(Open::For) => kw == Keyword::EndFor,
+            Some(Open::While) => kw == Keyword::EndWhile,
+            Some(Open::Repeat) => kw == Keyword::Until,
+            None => is_item_end(k),
+        }
+    }
+
+    /// The `;` after the last statement or declaration before a closing
+    /// keyword is missing (W0005), reported at the end of what lacks it.
+    pub(crate) fn missing_semi_before_end(&mut self) {
+        let at = self.prev().span().shrink_to_hi();
+        let d = Diagnostic::new(
+            Code::W0005,
+            at,
+            format!("missing `;` before {}", self.describe_current()),
+        )
+        .with_label("`;` expected here")
+        .with_help("add `;`: IEC 61131-3 ends every statement and declaration with it");
+        self.report_always(d);
     }
 
     fn expr_statement(&mut self) -> Option<Stmt> {

@@ -5,8 +5,10 @@ set -euo pipefail
 cd "$(dirname "$0")"
 
 # The C back end's tests need gcc (present with the Rust toolchain), make,
-# and cppcheck with its MISRA addon (Debian package cppcheck).
+# and cppcheck with its MISRA addon (Debian package cppcheck); the netlist
+# back end's tests validate its documents with xmllint (libxml2-utils).
 missing=""
+command -v xmllint >/dev/null 2>&1 || missing="$missing libxml2-utils"
 command -v cppcheck >/dev/null 2>&1 || missing="$missing cppcheck"
 command -v make >/dev/null 2>&1 || missing="$missing make"
 command -v gcc >/dev/null 2>&1 || missing="$missing gcc"

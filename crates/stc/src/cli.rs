@@ -8,6 +8,7 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use stc_diagnostics::Code;
 
 use crate::driver::{self, MessageFormat, Options};
+use crate::manifest::{self, Manifest};
 use crate::sources;
 
 /// Exit statuses (spec/cli.md).
@@ -35,8 +36,8 @@ enum Command {
     Check {
         #[command(flatten)]
         common: Common,
-        /// Source files or directories (one project).
-        #[arg(required = true)]
+        /// Source files or directories (one project) [default: the
+        /// project of stc.toml].
         files: Vec<PathBuf>,
     },
     /// Compile the sources to another form.
@@ -49,7 +50,14 @@ enum Command {
         /// Output file or directory (text kinds go to stdout without it).
         #[arg(short = 'o', long = "output")]
         output: Option<PathBuf>,
-        #[arg(required = true)]
+        /// `--emit netlist`: the CONFIGURATION to make a circuit of.
+        #[arg(long, value_name = "NAME", conflicts_with = "program")]
+        config: Option<String>,
+        /// `--emit netlist`: the PROGRAM to make a circuit of [default: the
+        /// only PROGRAM].
+        #[arg(long, value_name = "TYPE")]
+        program: Option<String>,
+        /// Source files or directories [default: the project of stc.toml].
         files: Vec<PathBuf>,
     },
     /// Compile and execute the sources in simulated time (or real time).
@@ -58,6 +66,59 @@ enum Command {
         common: Common,
         #[command(flatten)]
         args: Box<crate::run::RunArgs>,
+    },
+    /// Format source files in place (canonical layout, comments kept).
+    Fmt {
+        /// Change nothing: list the files that would change and exit 1 if any.
+        #[arg(long)]
+        check: bool,
+        /// How reserved words are spelled.
+        #[arg(long = "keyword-case", value_enum, default_value_t = KeywordCase::Upper)]
+        keyword_case: KeywordCase,
+        /// Spaces per indentation level.
+        #[arg(long = "indent", default_value_t = 4)]
+        indent: usize,
+        #[command(flatten)]
+        common: Common,
+        /// Source files or directories [default: the sources and tests of
+        /// the project of stc.toml].
+        files: Vec<PathBuf>,
+    },
+    /// Run the unit tests: the PROGRAMs named TEST_* (see the README).
+    Test {
+        #[command(flatten)]
+        common: Common,
+        /// Run only the tests whose name contains this text (any case).
+        #[arg(long)]
+        filter: Option<String>,
+        /// Also write the results as JUnit XML to this file.
+        #[arg(long, value_name = "FILE")]
+        junit: Option<PathBuf>,
+        /// Simulated time per cycle [default: the manifest's, else the
+        /// GCD of the task intervals, or 10ms].
+        #[arg(long, value_name = "DURATION")]
+        tick: Option<String>,
+        /// Watchdog: VM instructions allowed per test per cycle.
+        #[arg(long = "max-steps", value_name = "N", default_value_t = stc_runtime::DEFAULT_MAX_STEPS)]
+        max_steps: u64,
+        /// Source files or directories [default: the sources and tests of
+        /// the project of stc.toml].
+        files: Vec<PathBuf>,
+    },
+    /// Run the language server on stdin/stdout (for editors).
+    Lsp {
+        /// Language edition [default: iec3].
+        #[arg(long, value_enum)]
+        std: Option<Std>,
+    },
+    /// Create a project: stc.toml, a first program and a test.
+    Init {
+        /// The project's folder (created if needed).
+        #[arg(default_value = ".")]
+        dir: PathBuf,
+        /// The project's name [default: the folder's name].
+        #[arg(long)]
+        name: Option<String>,
     },
     /// Explain a diagnostic code.
     Explain {
@@ -74,15 +135,20 @@ struct Common {
     /// `-W error`: treat warnings as errors.
     #[arg(short = 'W', value_enum, value_name = "error")]
     warnings: Vec<WarningLevel>,
-    /// Language edition.
-    #[arg(long, value_enum, default_value_t = Std::Iec3)]
-    std: Std,
+    /// Language edition [default: the manifest's, else iec3].
+    #[arg(long, value_enum)]
+    std: Option<Std>,
+    /// The project manifest to use [default: stc.toml in this folder or
+    /// above, when no source file is given].
+    #[arg(long = "manifest-path", value_name = "PATH")]
+    manifest_path: Option<PathBuf>,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug)]
 enum Format {
     Human,
     Json,
+    Sarif,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug)]
@@ -96,6 +162,13 @@ enum Std {
     Iec3,
 }
 
+#[derive(ValueEnum, Clone, Copy, Debug)]
+enum KeywordCase {
+    Upper,
+    Lower,
+    Preserve,
+}
+
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 enum Emit {
     Ast,
@@ -107,17 +180,72 @@ enum Emit {
 }
 
 impl Common {
-    fn options(&self) -> Options {
-        Options {
+    /// The options, from the command line and the manifest (the command
+    /// line wins).
+    fn options_with(&self, manifest: Option<&Manifest>) -> Options {
+        let mut opts = Options {
             format: match self.message_format {
                 Format::Human => MessageFormat::Human,
                 Format::Json => MessageFormat::Json,
+                Format::Sarif => MessageFormat::Sarif,
             },
             warnings_as_errors: !self.warnings.is_empty(),
             language: stc_pipeline::Options {
-                iec2: matches!(self.std, Std::Iec2),
+                iec2: match (self.std, manifest) {
+                    (Some(s), _) => matches!(s, Std::Iec2),
+                    (None, Some(m)) => m.edition == manifest::Edition::Iec2,
+                    (None, None) => false,
+                },
             },
+            ..Options::default()
+        };
+        if let Some(m) = manifest {
+            opts.warnings_as_errors |= m.warnings == manifest::WarningLevel::Deny;
+            for &c in &m.allow {
+                opts.allowed.insert(c);
+            }
+            for &c in &m.deny {
+                opts.denied.insert(c);
+            }
         }
+        opts
+    }
+
+    /// The manifest to use: the one named by `--manifest-path`, else, when
+    /// no file is given, the nearest `stc.toml`.
+    fn manifest(&self, files: &[PathBuf]) -> Result<Option<Manifest>, Outcome> {
+        let path = match &self.manifest_path {
+            Some(p) => p.clone(),
+            None if files.is_empty() => {
+                let cwd = std::env::current_dir().map_err(usage_error)?;
+                match manifest::find(&cwd) {
+                    Some(p) => p,
+                    None => {
+                        return Err(usage_error(
+                            "no source files given, and no stc.toml in this folder or above (`stc init` makes one)",
+                        ))
+                    }
+                }
+            }
+            None => return Ok(None),
+        };
+        manifest::load(&path).map(Some).map_err(usage_error)
+    }
+
+    /// The files of the project and the options: the files given, else the
+    /// manifest's sources (and its tests with `tests`).
+    fn project(
+        &self,
+        files: Vec<PathBuf>,
+        tests: bool,
+    ) -> Result<(Vec<PathBuf>, Options, Option<Manifest>), Outcome> {
+        let manifest = self.manifest(&files)?;
+        let opts = self.options_with(manifest.as_ref());
+        let files = match (&manifest, files.is_empty()) {
+            (Some(m), true) => m.files(tests).map_err(usage_error)?,
+            _ => files,
+        };
+        Ok((files, opts, manifest))
     }
 }
 
@@ -130,6 +258,13 @@ pub fn main(args: Vec<OsString>) -> u8 {
             return if e.use_stderr() { EXIT_USAGE } else { EXIT_OK };
         }
     };
+    // The language server streams on stdin/stdout itself: it must run
+    // before the streams are locked for the collected outcome.
+    if let Command::Lsp { std } = &cli.command {
+        return crate::lsp_cmd::run(stc_pipeline::Options {
+            iec2: matches!(std, Some(Std::Iec2)),
+        });
+    }
     let mut out = std::io::stdout().lock();
     let mut err = std::io::stderr().lock();
     let outcome = stc_pipeline::with_big_stack(move || run(cli));
@@ -145,7 +280,7 @@ pub fn main(args: Vec<OsString>) -> u8 {
 /// Writes the file or directory tree a command produced.
 fn write_outputs(outcome: &Outcome) -> Result<(), String> {
     if let Some((path, bytes)) = &outcome.file {
-        std::fs::write(path, bytes).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        crate::output::write_file(path, bytes)?;
     }
     if let Some(tree) = &outcome.tree {
         crate::output::write_tree(&tree.0, &tree.1)?;
@@ -207,9 +342,81 @@ fn usage_error(msg: impl std::fmt::Display) -> Outcome {
 fn run(cli: Cli) -> Outcome {
     match cli.command {
         Command::Explain { code } => explain(&code),
-        Command::Run { common, args } => crate::run::run(&common.options(), *args),
+        Command::Fmt {
+            check,
+            keyword_case,
+            indent,
+            common,
+            files,
+        } => {
+            let (files, diagnostics, _) = match common.project(files, true) {
+                Ok(p) => p,
+                Err(o) => return o,
+            };
+            crate::fmt_cmd::run(&crate::fmt_cmd::FmtArgs {
+                files,
+                check,
+                format: stc_fmt::Options {
+                    keyword_case: match keyword_case {
+                        KeywordCase::Upper => stc_fmt::KeywordCase::Upper,
+                        KeywordCase::Lower => stc_fmt::KeywordCase::Lower,
+                        KeywordCase::Preserve => stc_fmt::KeywordCase::Preserve,
+                    },
+                    indent_width: indent,
+                    iec2: diagnostics.language.iec2,
+                },
+                diagnostics,
+            })
+        }
+        Command::Test {
+            common,
+            filter,
+            junit,
+            tick,
+            max_steps,
+            files,
+        } => {
+            let (files, opts, manifest) = match common.project(files, true) {
+                Ok(p) => p,
+                Err(o) => return o,
+            };
+            let tick = tick.or_else(|| manifest.and_then(|m| m.run.tick));
+            crate::test_cmd::run(
+                &crate::test_cmd::TestArgs {
+                    files,
+                    filter,
+                    junit,
+                    tick,
+                    max_steps,
+                },
+                &opts,
+            )
+        }
+        Command::Lsp { .. } => usage_error("stc lsp serves on stdin/stdout: run it as a command"),
+        Command::Init { dir, name } => match manifest::init(&dir, name.as_deref()) {
+            Ok(msg) => Outcome {
+                stdout: msg,
+                ..Outcome::default()
+            },
+            Err(e) => usage_error(e),
+        },
+        Command::Run { common, mut args } => {
+            let (files, opts, manifest) =
+                match common.project(std::mem::take(&mut args.files), false) {
+                    Ok(p) => p,
+                    Err(o) => return o,
+                };
+            args.files = files;
+            if let Some(m) = manifest {
+                args.apply_manifest(&m.run);
+            }
+            crate::run::run(&opts, *args)
+        }
         Command::Check { common, files } => {
-            let opts = common.options();
+            let (files, opts, _) = match common.project(files, false) {
+                Ok(p) => p,
+                Err(o) => return o,
+            };
             match sources::load(&files) {
                 Ok((sm, diags)) => {
                     let a = stc_pipeline::analyse(sm, diags, &opts.language);
@@ -231,9 +438,17 @@ fn run(cli: Cli) -> Outcome {
             common,
             emit,
             output,
+            config,
+            program,
             files,
         } => {
-            let opts = common.options();
+            let (files, opts, _) = match common.project(files, false) {
+                Ok(p) => p,
+                Err(o) => return o,
+            };
+            if emit != Emit::Netlist && (config.is_some() || program.is_some()) {
+                return usage_error("--config and --program choose what --emit netlist makes");
+            }
             if emit == Emit::Ast {
                 let parsed = match load_and_parse(&files, &opts) {
                     Ok(p) => p,
@@ -306,12 +521,42 @@ fn run(cli: Cli) -> Outcome {
                     }
                     return o;
                 }
+                Emit::Netlist => {
+                    if let Some(c) = config {
+                        return usage_error(format!(
+                            "--config {c}: the netlist back end makes a circuit of one PROGRAM; choose it with --program"
+                        ));
+                    }
+                    let p = match stc_netlist::choose_program(&module, program.as_deref()) {
+                        Ok(p) => p,
+                        Err(e) => return usage_error(e),
+                    };
+                    match stc_netlist::translate(&module, p) {
+                        Ok(circuit) => {
+                            let doc = stc_netlist::xml::write(&circuit).into_bytes();
+                            // The process ends right after: freeing the
+                            // circuit piece by piece would only cost time.
+                            std::mem::forget(circuit);
+                            doc
+                        }
+                        Err(r) => {
+                            let d = r.to_diagnostic(&sources);
+                            o.stderr.push_str(&driver::render(&[d], &sources, &opts));
+                            o.status = EXIT_ERRORS;
+                            return o;
+                        }
+                    }
+                }
                 other => {
                     return usage_error(
                         format!("--emit {other:?} is not implemented yet").to_lowercase(),
                     )
                 }
             };
+            if emit == Emit::Netlist {
+                // (As for `stc check`: no point freeing the tree at exit.)
+                std::mem::forget(module);
+            }
             match output {
                 Some(path) => o.file = Some((path, bytes)),
                 None => o.stdout = String::from_utf8_lossy(&bytes).into_owned(),

@@ -2,13 +2,15 @@
 //! of [`stc_pipeline`] plus how diagnostics are shown) and the rendering of
 //! diagnostics. The phases themselves are [`stc_pipeline`]'s.
 
-use stc_diagnostics::{render_human, render_json, Diagnostic, SourceMap};
+use stc_diagnostics::{render_human, render_json, Code, Diagnostic, Severity, SourceMap};
 
 #[derive(Clone, Copy, PartialEq, Eq, Debug, Default)]
 pub enum MessageFormat {
     #[default]
     Human,
     Json,
+    /// One SARIF 2.1.0 document for the whole run.
+    Sarif,
 }
 
 /// Options shared by every subcommand that analyses sources.
@@ -18,13 +20,51 @@ pub struct Options {
     pub warnings_as_errors: bool,
     /// What the program means (`--std iec2`...).
     pub language: stc_pipeline::Options,
+    /// Warnings not reported (`allow` in stc.toml).
+    pub allowed: CodeSet,
+    /// Warnings reported as errors (`deny` in stc.toml).
+    pub denied: CodeSet,
+}
+
+/// A set of diagnostic codes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct CodeSet([u64; 4]);
+
+impl CodeSet {
+    pub fn insert(&mut self, c: Code) {
+        let i = c as usize;
+        if let Some(w) = self.0.get_mut(i / 64) {
+            *w |= 1 << (i % 64);
+        }
+    }
+
+    pub fn contains(&self, c: Code) -> bool {
+        let i = c as usize;
+        self.0.get(i / 64).is_some_and(|w| w & (1 << (i % 64)) != 0)
+    }
+}
+
+/// A diagnostic as the options show it: `None` when it is an allowed
+/// warning, else with its severity raised where warnings are denied.
+pub fn shown(d: &Diagnostic, opts: &Options) -> Option<Diagnostic> {
+    if d.is_error() {
+        return Some(d.clone());
+    }
+    if opts.allowed.contains(d.code) {
+        return None;
+    }
+    let mut d = d.clone();
+    if opts.warnings_as_errors || opts.denied.contains(d.code) {
+        d.severity = Severity::Error;
+    }
+    Some(d)
 }
 
 /// Whether the diagnostics make the run fail (exit status 1).
 pub fn failed(diags: &[Diagnostic], opts: &Options) -> bool {
     diags
         .iter()
-        .any(|d| d.is_error() || opts.warnings_as_errors)
+        .any(|d| shown(d, opts).is_some_and(|d| d.is_error()))
 }
 
 /// At most this many errors are printed per file in the human format (a
@@ -105,12 +145,15 @@ pub fn summary(diags: &[Diagnostic], opts: &Options) -> String {
 pub fn render_each(diags: &[Diagnostic], sources: &SourceMap, opts: &Options) -> String {
     let mut sorted: Vec<&Diagnostic> = diags.iter().collect();
     sorted.sort_by_key(|d| d.span.lo);
+    if opts.format == MessageFormat::Sarif {
+        let shown: Vec<Diagnostic> = sorted.iter().filter_map(|d| shown(d, opts)).collect();
+        return stc_diagnostics::render_sarif(&shown, sources, env!("CARGO_PKG_VERSION"));
+    }
     let mut out = String::new();
     for d in sorted {
-        let mut d = d.clone();
-        if opts.warnings_as_errors {
-            d.severity = stc_diagnostics::Severity::Error;
-        }
+        let Some(d) = shown(d, opts) else {
+            continue;
+        };
         match opts.format {
             MessageFormat::Human => {
                 out.push_str(&render_human(&d, sources));
@@ -120,7 +163,24 @@ pub fn render_each(diags: &[Diagnostic], sources: &SourceMap, opts: &Options) ->
                 out.push_str(&render_json(&d, sources));
                 out.push('\n');
             }
+            MessageFormat::Sarif => {}
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_code_fits_a_code_set() {
+        assert!(Code::ALL.len() <= 256);
+        let mut s = CodeSet::default();
+        for &c in Code::ALL {
+            assert!(!s.contains(c));
+            s.insert(c);
+            assert!(s.contains(c));
+        }
+    }
 }

@@ -7,7 +7,11 @@
 pub mod cli;
 pub mod controller;
 pub mod driver;
+pub mod fmt_cmd;
+pub mod lsp_cmd;
+pub mod manifest;
 pub mod modbus;
 pub mod output;
 pub mod run;
 pub mod sources;
+pub mod test_cmd;

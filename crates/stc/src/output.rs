@@ -1,5 +1,6 @@
 //! Writing what a command produced: a file (`-o FILE`) or a directory tree
-//! (`--emit c -o DIR`). A tree is written beside its destination and moved
+//! (`--emit c -o DIR`). A file is written to a temporary file beside it and
+//! renamed over it, so it is written whole or not at all. A tree is written beside its destination and moved
 //! into place at the end, so a failed build never leaves a half-written
 //! tree that looks complete, and a directory that is not an earlier output
 //! of stc is never replaced (nothing the user had is lost).
@@ -8,6 +9,30 @@ use std::path::Path;
 
 /// The file that marks a directory as an stc C output.
 pub const C_MARKER: &str = "stc_meta.h";
+
+/// Writes `bytes` as the file `path`, whole or not at all (a temporary file
+/// in the same directory, renamed into place).
+pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), String> {
+    let shown = path.display();
+    if path.is_dir() {
+        return Err(format!("cannot write {shown}: it is a directory"));
+    }
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "out".into());
+    let parent = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => Path::new(".").to_path_buf(),
+    };
+    let tmp = parent.join(format!(".{name}.stc-new-{}", std::process::id()));
+    let result = std::fs::write(&tmp, bytes).and_then(|()| std::fs::rename(&tmp, path));
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(format!("cannot write {shown}: {e}"));
+    }
+    Ok(())
+}
 
 /// Writes `files` as the directory `dir`, replacing an earlier output.
 pub fn write_tree(dir: &Path, files: &[(String, String)]) -> Result<(), String> {

@@ -31,8 +31,8 @@ pub const EXIT_FAULT: u8 = 3;
 /// The options of `stc run` (spec/cli.md), after the diagnostics options.
 #[derive(Args, Debug)]
 pub struct RunArgs {
-    /// Source files or directories (one project), or one `.stbc` file.
-    #[arg(required = true)]
+    /// Source files or directories (one project), or one `.stbc` file
+    /// [default: the project of stc.toml].
     pub files: Vec<PathBuf>,
     /// Run this CONFIGURATION.
     #[arg(long, value_name = "NAME", conflicts_with = "program")]
@@ -90,8 +90,9 @@ pub struct RunArgs {
     /// saved).
     #[arg(long, requires = "retain")]
     pub cold: bool,
-    /// What runs the program: the bytecode VM, or the generated C built
-    /// with the system C compiler (`$CC`, else `cc`) and loaded.
+    /// What runs the program: the bytecode VM, native code compiled
+    /// in-process (Cranelift), or the generated C built with the system C
+    /// compiler (`$CC`, else `cc`) and loaded.
     #[arg(long, value_enum, default_value_t = Backend::Vm)]
     pub backend: Backend,
 }
@@ -111,6 +112,22 @@ pub enum ReportFormat {
     Csv,
 }
 
+impl RunArgs {
+    /// Takes what the command line left open from the manifest's `[run]`.
+    pub fn apply_manifest(&mut self, run: &crate::manifest::RunSettings) {
+        if self.config.is_none() && self.program.is_none() {
+            self.config = run.config.clone();
+            self.program = run.program.clone();
+        }
+        if self.tick.is_none() {
+            self.tick = run.tick.clone();
+        }
+        if self.cycles.is_none() {
+            self.cycles = run.cycles;
+        }
+    }
+}
+
 fn usage_error(msg: impl std::fmt::Display) -> Outcome {
     Outcome {
         stderr: format!("error: {msg}\n"),
@@ -121,13 +138,12 @@ fn usage_error(msg: impl std::fmt::Display) -> Outcome {
 
 /// Runs `stc run`.
 pub fn run(opts: &Options, args: RunArgs) -> Outcome {
-    if matches!(args.backend, Backend::Jit | Backend::Netlist) {
-        return usage_error(format!(
-            "--backend {}: this back end is not implemented yet (vm and c are)",
-            format!("{:?}", args.backend).to_lowercase()
-        ));
+    if args.backend == Backend::Netlist && args.config.is_some() {
+        return usage_error(
+            "--backend netlist runs one PROGRAM (choose it with --program), not a configuration",
+        );
     }
-    match load(&args.files, opts, args.backend) {
+    match load(&args.files, opts, args.backend, args.program.as_deref()) {
         Ok((engine, diagnostics)) => setup_and_run(engine, &args, diagnostics),
         Err(o) => o,
     }
@@ -139,6 +155,7 @@ fn load(
     files: &[PathBuf],
     opts: &Options,
     backend: Backend,
+    program: Option<&str>,
 ) -> Result<(Box<dyn Engine>, String), Outcome> {
     // Bytecode: a `.stbc` file, or its VMASM text (`--emit vmasm`), which
     // is assembled and verified like a loaded file.
@@ -207,6 +224,56 @@ fn load(
                 ..Outcome::default()
             }),
         };
+    }
+    if backend == Backend::Netlist {
+        if program.is_none() && !module.configs.is_empty() {
+            return Err(usage_error(
+                "--backend netlist runs one PROGRAM: choose it with --program",
+            ));
+        }
+        return match stc_engine_netlist::NetlistEngine::build(&module, program) {
+            Ok(engine) => Ok((Box::new(engine), rendered)),
+            Err(stc_engine_netlist::Error::Refused(r)) => Err(Outcome {
+                stderr: format!(
+                    "{rendered}{}",
+                    driver::render(&[r.to_diagnostic(&sources)], &sources, opts)
+                ),
+                status: EXIT_ERRORS,
+                ..Outcome::default()
+            }),
+            Err(e @ stc_engine_netlist::Error::Model(_)) => Err(Outcome {
+                stderr: format!("{rendered}internal error: {e}\n"),
+                status: crate::cli::EXIT_INTERNAL,
+                ..Outcome::default()
+            }),
+            Err(e @ stc_engine_netlist::Error::Read(_)) => Err(Outcome {
+                stderr: format!("{rendered}error: {e}\n"),
+                status: crate::cli::EXIT_INTERNAL,
+                ..Outcome::default()
+            }),
+            Err(e) => Err(usage_error(e)),
+        };
+    }
+    let mut rendered = rendered;
+    if backend == Backend::Jit {
+        match stc_engine_jit::JitEngine::build(&module) {
+            Ok(engine) => return Ok((Box::new(engine), rendered)),
+            // Where the JIT cannot run, the VM runs the program: never a
+            // failure (too large a program is reported by the VM below).
+            Err(stc_engine_jit::Error::Unsupported(why)) => {
+                rendered.push_str(&format!("note: --backend jit: {why}; running on the VM\n"));
+            }
+            Err(stc_engine_jit::Error::Diagnostics(_)) => {}
+            Err(e @ stc_engine_jit::Error::Internal(_)) => {
+                return Err(Outcome {
+                    stderr: format!(
+                        "{rendered}error: {e} (compiling for the JIT; this is a bug in stc)\n"
+                    ),
+                    status: crate::cli::EXIT_INTERNAL,
+                    ..Outcome::default()
+                })
+            }
+        }
     }
     match stc_vm::compile(&module) {
         Ok(image) => Ok((Box::new(Machine::new(Arc::new(image))), rendered)),

@@ -97,6 +97,97 @@ fn program(units: usize) -> String {
     )
 }
 
+/// A generated project of about `lines` lines that a circuit can express
+/// (the netlist back end's benchmark): per unit a FUNCTION with IF, CASE
+/// and arithmetic, and a FUNCTION_BLOCK with a TON timer, a state machine
+/// and a FOR loop with constant bounds; a PROGRAM with one instance of
+/// every function block, called every cycle.
+pub fn generate_circuit(lines: usize) -> String {
+    let mut out = String::with_capacity(lines * 32);
+    let mut i = 0;
+    let mut count = 0;
+    let mut units = Vec::new();
+    while count + 12 < lines.max(13) {
+        let unit = circuit_unit(i);
+        // The program's declaration and call of the unit: 3 lines.
+        count += unit.lines().count() + 3;
+        out.push_str(&unit);
+        units.push(i);
+        i += 1;
+    }
+    let mut decls = String::new();
+    let mut calls = String::new();
+    for i in units {
+        decls.push_str(&format!("    c{i} : Stage{i};\n"));
+        calls.push_str(&format!(
+            "    c{i}(run := start, level := level + {i});\n    total := total + c{i}.out;\n"
+        ));
+    }
+    out.push_str(&format!(
+        "PROGRAM Main\nVAR_INPUT\n    start : BOOL;\n    level : INT;\nEND_VAR\nVAR_OUTPUT\n    total : DINT;\nEND_VAR\nVAR\n{decls}END_VAR\n    total := 0;\n{calls}END_PROGRAM\n"
+    ));
+    out
+}
+
+fn circuit_unit(i: usize) -> String {
+    format!(
+        r#"FUNCTION Clamp{i} : INT
+VAR_INPUT
+    x : INT;
+    mode : INT;
+END_VAR
+    CASE mode OF
+        0: Clamp{i} := x;
+        1: Clamp{i} := x * 2 - {i};
+    ELSE
+        Clamp{i} := -x;
+    END_CASE;
+    IF Clamp{i} > 1000 THEN
+        Clamp{i} := 1000;
+    ELSIF Clamp{i} < -1000 THEN
+        Clamp{i} := -1000;
+    END_IF;
+END_FUNCTION
+
+(* Stage {i}: counts while running, then rests for its timer. *)
+FUNCTION_BLOCK Stage{i}
+VAR_INPUT
+    run : BOOL;
+    level : INT;
+END_VAR
+VAR_OUTPUT
+    out : DINT;
+END_VAR
+VAR
+    state : INT;
+    pause : TON;
+    k : INT;
+    sum : DINT;
+END_VAR
+    pause(IN := state = 2, PT := T#200ms);
+    CASE state OF
+        0:
+            IF run THEN
+                state := 1;
+            END_IF;
+        1:
+            sum := 0;
+            FOR k := 0 TO 3 DO
+                sum := sum + INT_TO_DINT(Clamp{i}(x := level + k, mode := k MOD 3));
+            END_FOR;
+            out := out + sum;
+            state := 2;
+        2:
+            IF pause.Q THEN
+                state := 0;
+            END_IF;
+    END_CASE;
+END_FUNCTION_BLOCK
+
+"#
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -112,5 +203,17 @@ mod tests {
         let (ast, diags) = stc_syntax::parse_project(&sm, &mut interner);
         assert!(diags.is_empty(), "{:?}", &diags[..diags.len().min(3)]);
         assert!(ast.items.len() > 200);
+    }
+
+    #[test]
+    fn generated_circuit_projects_parse_at_the_requested_size() {
+        let src = generate_circuit(5_000);
+        let lines = src.lines().count();
+        assert!((4_900..5_200).contains(&lines), "{lines}");
+        let mut sm = stc_diagnostics::SourceMap::new();
+        sm.add("gen.st", src);
+        let mut interner = stc_syntax::Interner::new();
+        let (_, diags) = stc_syntax::parse_project(&sm, &mut interner);
+        assert!(diags.is_empty(), "{:?}", &diags[..diags.len().min(3)]);
     }
 }

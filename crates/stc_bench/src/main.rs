@@ -96,6 +96,29 @@ fn main() {
         std::fs::write(path, stc_bench::generate(lines)).expect("cannot write the file");
         return;
     }
+    // `stc-bench write-circuit FILE LINES`: a project the netlist back end
+    // can express (`stc build --emit netlist FILE`).
+    if args.get(1).map(|s| s.as_str()) == Some("write-circuit") {
+        let (Some(path), Some(lines)) = (
+            args.get(2),
+            args.get(3).and_then(|n| n.replace('_', "").parse().ok()),
+        ) else {
+            eprintln!("usage: stc-bench write-circuit FILE LINES");
+            std::process::exit(2);
+        };
+        std::fs::write(path, stc_bench::generate_circuit(lines)).expect("cannot write the file");
+        return;
+    }
+    // `stc-bench netlist LINES`: the phases of `--emit netlist` on a
+    // generated circuit-expressible project, and the circuit's size.
+    if args.get(1).map(|s| s.as_str()) == Some("netlist") {
+        let lines: usize = args
+            .get(2)
+            .and_then(|n| n.replace('_', "").parse().ok())
+            .unwrap_or(100_000);
+        netlist(lines);
+        return;
+    }
     if args.get(1).map(|s| s.as_str()) == Some("vm") {
         let cycles: u64 = args.get(2).and_then(|n| n.parse().ok()).unwrap_or(200);
         vm::run_kernels(cycles, args.get(3).map(|s| s.as_str()));
@@ -138,6 +161,21 @@ fn main() {
             a
         });
         report("check", n, bytes, t, peak.saturating_sub(bytes));
+        // The back ends from the lowered module: the bytecode compiler and
+        // the JIT (Cranelift, every POU to native code).
+        let module = stc_pipeline::compile_text("gen.st", &src, &stc_pipeline::Options::default())
+            .module
+            .expect("the generated project compiles");
+        let (t, peak) = measure(Duration::from_secs(2), || {
+            stc_vm::compile(&module).expect("the VM compiles it")
+        });
+        report("vm compile", n, bytes, t, peak);
+        let (t, peak) = measure(Duration::from_secs(2), || {
+            stc_engine_jit::JitEngine::build(&module)
+                .map_err(|e| e.to_string())
+                .expect("the JIT compiles it")
+        });
+        report("jit compile", n, bytes, t, peak);
     }
 }
 
@@ -153,4 +191,32 @@ fn generate_checked(lines: usize) -> String {
         diags.first()
     );
     src
+}
+
+/// Times the phases of `stc build --emit netlist` once each.
+fn netlist(lines: usize) {
+    let src = stc_bench::generate_circuit(lines);
+    let n = src.lines().count();
+    let t0 = Instant::now();
+    let c = stc_pipeline::compile_text("gen.st", &src, &stc_pipeline::Options::default());
+    let t1 = Instant::now();
+    let m = c.module.expect("the generated project has errors");
+    let p = stc_netlist::choose_program(&m, None).expect("one program");
+    let circuit = stc_pipeline::with_big_stack(move || stc_netlist::translate(&m, p))
+        .expect("the generated project is circuit-expressible");
+    let t2 = Instant::now();
+    let xml = stc_netlist::xml::write(&circuit);
+    let t3 = Instant::now();
+    println!(
+        "{n} lines: front end {:.1} ms, translate {:.1} ms, write {:.1} ms; {} components, {} nets, {} MB of XML",
+        (t1 - t0).as_secs_f64() * 1e3,
+        (t2 - t1).as_secs_f64() * 1e3,
+        (t3 - t2).as_secs_f64() * 1e3,
+        circuit.components.len(),
+        circuit.nets.len(),
+        xml.len() / 1_000_000
+    );
+    for (name, count) in circuit.census() {
+        println!("  {name}: {count}");
+    }
 }

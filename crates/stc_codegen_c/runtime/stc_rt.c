@@ -3028,6 +3028,9 @@ static uint8_t conversion_allowed(uint8_t from, uint8_t to)
     } else if (((f == CAT_INT) && (t == CAT_REAL)) || ((f == CAT_REAL) && (t == CAT_INT))
                || ((f == CAT_REAL) && (t == CAT_REAL))) {
         ok = 1U;
+    } else if (((f == CAT_BOOL) && (t == CAT_REAL)) || ((f == CAT_REAL) && (t == CAT_BOOL))) {
+        /* BOOL_TO_REAL and REAL_TO_BOOL (stc_values::conversion_is_extension). */
+        ok = 1U;
     } else if ((f == CAT_DUR) && ((t == CAT_INT) || (t == CAT_REAL) || (t == CAT_DUR)
                                   || (t == CAT_TOD))) {
         ok = 1U;
@@ -3243,6 +3246,13 @@ static uint8_t convert_num(uint8_t from_elem, num v, uint8_t to_elem, uint64_t *
         ok = real_to_integer(v.f, to_elem, 0U, &bits);
     } else if ((f == CAT_INT) && (t == CAT_REAL)) {
         real = int_to_real(v, to_elem);
+    } else if ((f == CAT_BOOL) && (t == CAT_REAL)) {
+        real = (v.bits != 0U) ? 1.0 : 0.0;
+    } else if ((f == CAT_REAL) && (t == CAT_BOOL)) {
+        /* TRUE unless zero (-0.0 is zero; NaN is not). */
+        if (v.f != 0.0) {
+            bits = 1U;
+        }
     } else if (t == CAT_BOOL) {
         if (v.bits != 0U) {
             bits = 1U;

@@ -401,6 +401,43 @@ carries (`label: instruction`). Labels are local to one POU body.";
     E1004 Error "label defined twice"
 "Two instructions of one Instruction List body carry the same label, so a
 jump to it would be ambiguous. Rename one of them.";
+    E1101 Error "loop a circuit cannot unroll"
+"The netlist back end (`stc build --emit netlist`) unrolls every loop into
+copies of its body, which needs the number of iterations to be decided by
+constants when compiling: a FOR with constant bounds and step (EXIT and
+CONTINUE inside it are fine). A WHILE or REPEAT loop, or a FOR whose bounds
+depend on run-time values, has no fixed number of copies, and so has no
+circuit; neither has a loop of more than 4096 iterations. Rewrite the loop
+with constant bounds (a bounded FOR with EXIT), or run the program on the
+VM or the C back end.";
+    E1102 Error "STRING in a circuit"
+"A circuit's nets carry elementary values of fixed width (BOOL, integers,
+bit strings, reals, times, dates); a STRING or WSTRING, and every
+operation on one, has no component in the netlist library. The variable or
+operation named cannot be translated; keep text out of the program the
+circuit is made of.";
+    E1103 Error "run-time selection a circuit cannot make"
+"An array element chosen by a run-time index becomes a multiplexer (for a
+read) or a demultiplexer (for a write) over every element; the netlist back
+end builds them for arrays of at most 1024 elements, and for one run-time
+index at a time. A larger array, an element of an element both chosen at
+run time, or a function block instance chosen at run time (`fbs[i](...)`)
+has no circuit. Use constant indices, a smaller array, or a CASE over the
+index.";
+    E1104 Error "assignment to a circuit input"
+"A program's VAR_INPUT variables and its `%I` variables are input modules of
+the circuit: their values come from outside each cycle, and a circuit
+cannot drive its own input. Copy the input into a VAR variable and change
+that one.";
+    E1105 Error "construct without a circuit component"
+"The construct named has no component in the netlist library (yet): access
+to a part of a bit string (`x.3`), SPLIT_DATE/SPLIT_TOD/SPLIT_DT, a
+program VAR_IN_OUT, a POU other than a PROGRAM as the circuit. The message
+says which; docs/netlist.md lists what a circuit expresses.";
+    E1106 Error "circuit too large"
+"Unrolling the loops and inlining the calls of the program would make a
+circuit of more than 1 000 000 components. Make the loops shorter or the
+program smaller.";
 
     W0101 Warning "result depends on evaluation order"
 "A variable is written by an output parameter (`=>`) or VAR_IN_OUT of one call

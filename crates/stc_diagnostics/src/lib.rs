@@ -10,10 +10,12 @@ mod codes;
 mod diagnostic;
 mod examples;
 mod render;
+mod sarif;
 mod span;
 
 pub use codes::{Code, CodeSeverity};
 pub use diagnostic::{Diagnostic, Label, Severity};
 pub use examples::{example, Example};
 pub use render::{render_human, render_json};
+pub use sarif::render_sarif;
 pub use span::{FileId, LineCol, SourceFile, SourceMap, Span};

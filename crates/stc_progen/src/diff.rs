@@ -1,9 +1,10 @@
 //! The differential driver: one generated program through `stc check`,
-//! then `stc run` on the bytecode VM and `stc run --backend c` (the C back
-//! end's output compiled by the system C compiler into a shared library and
-//! loaded, `stc_engine_c`) with the same options, both in-process through
-//! [`stc::cli::run_args`], comparing stdout, stderr and the exit status
-//! byte for byte.
+//! then `stc run` on the bytecode VM, `stc run --backend jit` (native code
+//! compiled in-process by Cranelift, `stc_engine_jit`) and `stc run
+//! --backend c` (the C back end's output compiled by the system C compiler
+//! into a shared library and loaded, `stc_engine_c`) with the same
+//! options, all in-process through [`stc::cli::run_args`], comparing
+//! stdout, stderr and the exit status of each with the VM's byte for byte.
 //!
 //! Both sides go through the same command-line path, so both print the
 //! compile warnings first on stderr and their whole stderr is compared; the
@@ -74,11 +75,15 @@ pub struct Report {
     pub check: Output,
     /// `None` when `stc check` found errors.
     pub vm: Option<Output>,
+    /// The JIT's run (`None`: not tried).
+    pub jit: Option<Output>,
     pub c: CSide,
     /// The cycles run, so the reports expected (`--trace`).
     pub cycles: u64,
     /// Wall time of the VM side (check and run).
     pub vm_time: Duration,
+    /// Wall time of the JIT side (analysis, compilation, run).
+    pub jit_time: Duration,
     /// Wall time of the C side (analysis, C generation, C compilation,
     /// run).
     pub c_time: Duration,
@@ -145,6 +150,27 @@ impl Report {
             .and_then(|e| e.lines().find(|l| l.starts_with("fault: watchdog")))
         {
             return Some(format!("a loop did not end: {l}"));
+        }
+        if let Some(j) = &self.jit {
+            let mut diffs = Vec::new();
+            if vm.status != j.status {
+                diffs.push(format!("exit status: VM {}, JIT {}", vm.status, j.status));
+            }
+            if vm.stdout != j.stdout {
+                diffs.push(format!(
+                    "JIT stdout differs:\n{}",
+                    first_difference(&vm.stdout, &j.stdout)
+                ));
+            }
+            if vm.stderr != j.stderr {
+                diffs.push(format!(
+                    "JIT stderr differs:\n{}",
+                    first_difference(&vm.stderr, &j.stderr)
+                ));
+            }
+            if !diffs.is_empty() {
+                return Some(diffs.join("\n"));
+            }
         }
         match &self.c {
             CSide::Skipped | CSide::Unavailable(_) => None,
@@ -217,6 +243,8 @@ fn shorten(s: &str, max: usize) -> String {
 pub struct Options {
     /// Try the C back end.
     pub c: bool,
+    /// Try the JIT.
+    pub jit: bool,
     /// Keep the directories of programs that passed too (those with a
     /// problem are always kept).
     pub keep: bool,
@@ -229,6 +257,7 @@ impl Default for Options {
     fn default() -> Options {
         Options {
             c: true,
+            jit: true,
             keep: false,
             stop_after: 20,
         }
@@ -304,9 +333,11 @@ pub fn run_one(g: &Generated, dir: &Path, opts: &Options) -> Result<Report, Stri
         dir: dir.to_path_buf(),
         check,
         vm: None,
+        jit: None,
         c: CSide::Skipped,
         cycles: g.cycles,
         vm_time: Duration::ZERO,
+        jit_time: Duration::ZERO,
         c_time: Duration::ZERO,
     };
     if report.check_failed() {
@@ -318,6 +349,13 @@ pub fn run_one(g: &Generated, dir: &Path, opts: &Options) -> Result<Report, Stri
     report.vm = Some(stc(&argv));
     report.vm_time = t0.elapsed();
 
+    if opts.jit {
+        let t1 = Instant::now();
+        let mut jit_argv = argv.clone();
+        jit_argv.extend(["--backend", "jit"]);
+        report.jit = Some(stc(&jit_argv));
+        report.jit_time = t1.elapsed();
+    }
     if opts.c {
         let t1 = Instant::now();
         argv.extend(["--backend", "c"]);
@@ -354,6 +392,8 @@ pub struct Summary {
     pub faults: Vec<(String, usize)>,
     /// Programs compared with the C side.
     pub compared: usize,
+    /// Programs compared with the JIT.
+    pub jit_compared: usize,
     /// Why the C side was not available, if it was not.
     pub c_unavailable: Option<String>,
     /// Seeds with a problem, and the problem (errors, failed builds,
@@ -362,6 +402,7 @@ pub struct Summary {
     /// Machinery errors (cannot write a file...).
     pub errors: Vec<(u64, String)>,
     pub vm_time: Duration,
+    pub jit_time: Duration,
     pub c_time: Duration,
     pub wall_time: Duration,
 }
@@ -371,15 +412,17 @@ impl Summary {
     pub fn text(&self) -> String {
         let n = self.programs.max(1) as f64;
         let mut s = format!(
-            "{} programs: {} rejected by stc check, {} faulted on the VM ({:.1}%), {} compared with C, {} problems, {} errors; VM {:.1} ms/program, C {:.1} ms/program, wall {:.1} s",
+            "{} programs: {} rejected by stc check, {} faulted on the VM ({:.1}%), {} compared with the JIT, {} compared with C, {} problems, {} errors; VM {:.1} ms/program, JIT {:.1} ms/program, C {:.1} ms/program, wall {:.1} s",
             self.programs,
             self.check_failed.len(),
             self.vm_faulted,
             100.0 * self.vm_faulted as f64 / n,
+            self.jit_compared,
             self.compared,
             self.problems.len(),
             self.errors.len(),
             self.vm_time.as_secs_f64() * 1000.0 / n,
+            self.jit_time.as_secs_f64() * 1000.0 / n,
             self.c_time.as_secs_f64() * 1000.0 / n,
             self.wall_time.as_secs_f64(),
         );
@@ -469,7 +512,11 @@ pub fn run_many(
                     Err(e) => s.errors.push((seed, e)),
                     Ok(r) => {
                         s.vm_time += r.vm_time;
+                        s.jit_time += r.jit_time;
                         s.c_time += r.c_time;
+                        if r.jit.is_some() {
+                            s.jit_compared += 1;
+                        }
                         if r.check_failed() {
                             s.check_failed.push(seed);
                         }
@@ -538,9 +585,11 @@ mod tests {
             dir: PathBuf::new(),
             check: out("", "w.st:1:1: warning[W0101]: ...\n", 0),
             vm: Some(vm),
+            jit: None,
             c,
             cycles: 2,
             vm_time: Duration::ZERO,
+            jit_time: Duration::ZERO,
             c_time: Duration::ZERO,
         }
     }

@@ -1408,7 +1408,8 @@ impl Gen {
                 *self.rng.pick(&types)
             };
             let x = self.ex(b, t, d.min(2), true);
-            sel = if self.rng.chance(40) {
+            let wrapped = self.rng.chance(40);
+            sel = if wrapped {
                 if class(t) == Class::Bits {
                     format!("({x} AND 16#7)")
                 } else {
@@ -1421,6 +1422,20 @@ impl Gen {
             let (lo, hi) = (lo_t.max(-8), hi_t.min(24));
             let npts = self.rng.range(2, 8) as usize;
             let mut pts: Vec<i128> = (0..npts).map(|_| self.rng.range(lo, hi)).collect();
+            // A bare selector may be a variable of a subrange of `t`: a label
+            // outside its range is an error (E0702), so labels stay inside
+            // every subrange of `t` (the random draws are the same).
+            if !wrapped {
+                let (mut a, mut z) = (lo, hi);
+                for s in self.types.subs.iter().filter(|s| s.base == t) {
+                    a = a.max(s.lo);
+                    z = z.min(s.hi);
+                }
+                pts.retain(|v| (a..=z).contains(v));
+                if pts.is_empty() && a <= z {
+                    pts.push(a);
+                }
+            }
             pts.sort_unstable();
             pts.dedup();
             let mut rest = &pts[..];

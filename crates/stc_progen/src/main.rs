@@ -3,7 +3,7 @@
 //!
 //! ```text
 //! stc-progen write DIR N [SEED] [--size small|medium|large]
-//! stc-progen run N [SEED] [--size S] [--workers W] [--work DIR] [--keep] [--no-c] [--stop-after P]
+//! stc-progen run N [SEED] [--size S] [--workers W] [--work DIR] [--keep] [--no-c] [--no-jit] [--stop-after P]
 //! stc-progen print SEED [--size S]
 //! ```
 //!
@@ -26,7 +26,7 @@ use stc_progen::{diff, program, Size};
 
 const USAGE: &str = "usage:
   stc-progen write DIR N [SEED] [--size small|medium|large]
-  stc-progen run N [SEED] [--size S] [--workers W] [--work DIR] [--keep] [--no-c] [--stop-after P]
+  stc-progen run N [SEED] [--size S] [--workers W] [--work DIR] [--keep] [--no-c] [--no-jit] [--stop-after P]
   stc-progen print SEED [--size S]";
 
 fn main() -> ExitCode {
@@ -46,6 +46,7 @@ struct Args {
     work: Option<PathBuf>,
     keep: bool,
     c: bool,
+    jit: bool,
     stop_after: usize,
 }
 
@@ -57,6 +58,7 @@ fn parse(args: &[String]) -> Result<Args, String> {
         work: None,
         keep: false,
         c: true,
+        jit: true,
         stop_after: 20,
     };
     let mut it = args.iter();
@@ -84,6 +86,7 @@ fn parse(args: &[String]) -> Result<Args, String> {
             }
             "--keep" => a.keep = true,
             "--no-c" => a.c = false,
+            "--no-jit" => a.jit = false,
             s if s.starts_with("--") => return Err(format!("unknown option `{s}`")),
             s => a.positional.push(s.to_string()),
         }
@@ -153,6 +156,7 @@ fn real_main() -> Result<ExitCode, String> {
             let seeds: Vec<u64> = (seed..seed.saturating_add(n)).collect();
             let opts = diff::Options {
                 c: a.c,
+                jit: a.jit,
                 keep: a.keep,
                 stop_after: a.stop_after,
             };

@@ -9,6 +9,11 @@
 //!    print byte-identical reports, stderr and exit statuses. Skipped, with
 //!    a note, when no C compiler can be run.
 //!
+//! 3. The JIT: `STC_DIFF_JIT_PROGRAMS` small programs (default 300) and a
+//!    third as many large ones run on the VM and with `stc run --backend
+//!    jit` must print the same bytes (the C run of 2. compares the JIT
+//!    too); the long run is `stc-progen run N --no-c`.
+//!
 //! `STC_DIFF_SEED` chooses the first seed of the differential run (default
 //! a fixed one, so CI is reproducible); the long local run is
 //! `cargo run --release -p stc_progen -- run N` (see the crate's README).
@@ -36,6 +41,7 @@ fn env_number(name: &str, default: u64) -> u64 {
 fn generated_programs_check_clean_and_end_on_the_vm() {
     let opts = diff::Options {
         c: false,
+        jit: false,
         ..diff::Options::default()
     };
     let mut total = 0;
@@ -117,4 +123,35 @@ fn vm_and_c_back_end_agree_on_generated_programs() {
     assert!(s.problems.is_empty(), "{}", s.text());
     assert_eq!(s.programs as u64, n);
     assert_eq!(s.compared as u64, n, "every program compared: {}", s.text());
+}
+
+#[test]
+fn vm_and_jit_agree_on_generated_programs() {
+    let n = env_number("STC_DIFF_JIT_PROGRAMS", 300);
+    if n == 0 {
+        eprintln!("note: STC_DIFF_JIT_PROGRAMS=0: JIT differential test skipped");
+        return;
+    }
+    let first = env_number("STC_DIFF_SEED", 1_000_000) + 500_000;
+    let opts = diff::Options {
+        c: false,
+        ..diff::Options::default()
+    };
+    let seeds: Vec<u64> = (first..first + n).collect();
+    for (size, name, seeds) in [
+        (Size::small(), "small", &seeds[..]),
+        (Size::large(), "large", &seeds[..seeds.len() / 3]),
+    ] {
+        let n = seeds.len() as u64;
+        let s = diff::run_many(seeds, &size, 2, &work(&format!("jit-{name}")), &opts);
+        eprintln!("{name}: {}", s.text());
+        assert!(s.errors.is_empty(), "{}", s.text());
+        assert!(s.problems.is_empty(), "{}", s.text());
+        assert_eq!(
+            s.jit_compared as u64,
+            n,
+            "every program compared: {}",
+            s.text()
+        );
+    }
 }

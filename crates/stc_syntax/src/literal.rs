@@ -317,9 +317,7 @@ fn parse_date_part(s: &str, text: &str) -> Result<i64, LitError> {
 
 fn parse_tod_part(s: &str, text: &str) -> Result<u64, LitError> {
     let mut it = s.splitn(3, ':');
-    // `HH:MM` without seconds (CODESYS, TwinCAT) means `HH:MM:00`; the
-    // parser warns about it (W0007, [`lacks_seconds`]).
-    let (Some(h), Some(m), Some(sec)) = (it.next(), it.next(), it.next().or(Some("0"))) else {
+    let (Some(h), Some(m), Some(sec)) = (it.next(), it.next(), it.next()) else {
         return err(
             Code::E0008,
             format!("malformed time of day `{text}`: expected HH:MM:SS"),
@@ -348,7 +346,10 @@ fn parse_tod_part(s: &str, text: &str) -> Result<u64, LitError> {
 }
 
 /// Whether a TOD or DT literal leaves out the seconds (`TOD#09:00`,
-/// `DT#2024-01-31-09:00`): accepted as zero seconds, with a warning.
+/// `DT#2024-01-31-09:00`): the parser reads such a literal in source text
+/// as zero seconds, with a warning (W0007), by parsing
+/// [`with_zero_seconds`]. Text read at run time (STRING_TO_TOD) stays
+/// strict.
 pub fn lacks_seconds(text: &str) -> bool {
     let b = body(text).1;
     let tod = match b.match_indices('-').nth(2) {
@@ -356,6 +357,11 @@ pub fn lacks_seconds(text: &str) -> bool {
         None => b,
     };
     tod.matches(':').count() == 1
+}
+
+/// A TOD or DT literal that [`lacks_seconds`] completed with `:00`.
+pub fn with_zero_seconds(text: &str) -> String {
+    format!("{text}:00")
 }
 
 /// `D#2024-01-31` to seconds since 1970-01-01.
@@ -846,9 +852,13 @@ mod tests {
             Ok((12 * 3600 + 30 * 60) * 1_000_000_000 + 500_000_000)
         );
         assert_eq!(parse_tod("TOD#25:00:00").unwrap_err().code, Code::E0008);
-        assert_eq!(parse_tod("TOD#09:30"), parse_tod("TOD#09:30:00"));
+        assert_eq!(parse_tod("TOD#09:30").unwrap_err().code, Code::E0008);
         assert_eq!(
-            parse_dt("DT#2024-01-31-9:30"),
+            parse_tod(&with_zero_seconds("TOD#09:30")),
+            parse_tod("TOD#09:30:00")
+        );
+        assert_eq!(
+            parse_dt(&with_zero_seconds("DT#2024-01-31-9:30")),
             parse_dt("DT#2024-01-31-09:30:00")
         );
         assert!(lacks_seconds("TIME_OF_DAY#9:00") && lacks_seconds("DT#2024-01-31-09:00"));

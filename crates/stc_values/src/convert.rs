@@ -497,8 +497,15 @@ mod tests {
         assert_eq!(conv(E::Int, E::Bool, i(-5)), Ok(Value::Bool(true)));
         assert_eq!(conv(E::Word, E::Bool, i(0)), Ok(Value::Bool(false)));
         assert_eq!(conv(E::Byte, E::Bool, i(256)), Ok(Value::Bool(true)));
-        assert!(!conversion_allowed(E::Bool, E::Real));
-        assert!(!conversion_allowed(E::Real, E::Bool));
+        // BOOL to REAL/LREAL and back: not in the standard, accepted as the
+        // other tools do (W0112): FALSE/TRUE are 0.0/1.0, a REAL is TRUE
+        // when it is not zero.
+        assert!(conversion_allowed(E::Bool, E::Real));
+        assert!(conversion_allowed(E::Real, E::Bool));
+        assert_eq!(
+            conv(E::Bool, E::Lreal, Value::Bool(true)),
+            Ok(Value::Real(1.0))
+        );
         assert!(!conversion_allowed(E::Bool, E::Time));
         assert!(!conversion_allowed(E::Bool, E::Char));
     }

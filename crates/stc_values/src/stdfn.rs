@@ -954,7 +954,8 @@ mod tests {
             }
         );
         assert_eq!(sig("REAL_TO_BYTE").ret, el(E::Byte));
-        assert!(lookup("BOOL_TO_REAL").is_none());
+        assert!(lookup("BOOL_TO_REAL").is_some());
+        assert!(lookup("BOOL_TO_TIME").is_none());
         assert!(lookup("INT_TO_INT").is_none());
         assert!(lookup("DATE_TO_TOD").is_none());
         let to = sig("TO_INT");

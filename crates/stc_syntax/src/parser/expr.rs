@@ -321,16 +321,22 @@ impl Parser<'_> {
     /// Decodes the current literal token (after an optional sign).
     fn literal_value(&mut self, negative: bool) -> Result<LitValue, LitError> {
         let t = self.bump();
-        let text = self.text_of(t);
-        if matches!(t.kind, TokenKind::Tod | TokenKind::Dt) && literal::lacks_seconds(text) {
-            let d = Diagnostic::new(
-                Code::W0007,
-                t.span(),
-                format!("`{text}` has no seconds; read as zero seconds"),
-            )
-            .with_help("write the seconds: IEC 61131-3 requires HH:MM:SS");
-            self.report_always(d);
-        }
+        let source = self.text_of(t);
+        let completed;
+        let text =
+            if matches!(t.kind, TokenKind::Tod | TokenKind::Dt) && literal::lacks_seconds(source) {
+                let d = Diagnostic::new(
+                    Code::W0007,
+                    t.span(),
+                    format!("`{source}` has no seconds; read as zero seconds"),
+                )
+                .with_help("write the seconds: IEC 61131-3 requires HH:MM:SS");
+                self.report_always(d);
+                completed = literal::with_zero_seconds(source);
+                completed.as_str()
+            } else {
+                source
+            };
         Ok(match t.kind {
             TokenKind::Int => LitValue::Int {
                 value: literal::parse_int(text)?,

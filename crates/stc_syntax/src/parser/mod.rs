@@ -46,7 +46,7 @@ pub fn parse_file(text: &str, base: u32, ast: &mut Ast, interner: &mut Interner)
 
 /// The words the 3rd edition made keywords: in 2nd-edition code (`--std
 /// iec2`) they are ordinary names (`char : BYTE;`, a member `LDT`).
-fn third_edition_word(k: TokenKind) -> bool {
+pub fn third_edition_word(k: TokenKind) -> bool {
     matches!(
         k,
         TokenKind::Elem(

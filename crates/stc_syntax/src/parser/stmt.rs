@@ -380,6 +380,18 @@ impl Parser<'_> {
     /// else is reported; a token that closes an outer block is left for it,
     /// a stray one is skipped and parsing of the body resumes.
     fn close_block(&mut self, end: Keyword, opener: Span, opener_kw: &str, body: &mut Vec<Stmt>) {
+        self.close_block_with(end, opener, opener_kw, body, None)
+    }
+
+    /// [`Self::close_block`], with a help for the missing END keyword.
+    fn close_block_with(
+        &mut self,
+        end: Keyword,
+        opener: Span,
+        opener_kw: &str,
+        body: &mut Vec<Stmt>,
+        help: Option<&str>,
+    ) {
         loop {
             if self.eat_kw(end) {
                 return;
@@ -398,6 +410,10 @@ impl Parser<'_> {
             )
             .with_label(format!("expected `{}`", end.name()))
             .with_secondary(opener, format!("this {opener_kw} is not closed"));
+            let d = match help {
+                Some(h) => d.with_help(h),
+                None => d,
+            };
             self.report(d);
             if self.belongs_to_outer(k) || self.aborted {
                 return;
@@ -449,6 +465,13 @@ impl Parser<'_> {
                 let body = self.stmt_list(false);
                 branches.push(CondBranch { cond, body });
             } else if self.eat_kw(Keyword::Else) {
+                // `ELSE IF` opens a second IF inside the ELSE branch, which
+                // takes the one END_IF: when this IF then misses its own,
+                // the person meant ELSIF.
+                let else_if = self.at_kw(Keyword::If);
+                let help = else_if.then_some(
+                    "`ELSE IF` opens a new IF inside the ELSE branch, which needs its own `END_IF`; did you mean `ELSIF`?",
+                );
                 let mut body = self.stmt_list(false);
                 // ELSIF or a second ELSE after ELSE: reported, then parsed
                 // as if it were allowed, so its statements are still checked.
@@ -461,7 +484,7 @@ impl Parser<'_> {
                     }
                     body.extend(self.stmt_list(false));
                 }
-                self.close_block(Keyword::EndIf, opener, "IF", &mut body);
+                self.close_block_with(Keyword::EndIf, opener, "IF", &mut body, help);
                 else_body = Some(body);
                 break;
             } else {

@@ -1,0 +1,560 @@
+//! The layout pass: tokens and trivia in, canonical text out.
+//!
+//! The formatter rewrites only what lies *between* tokens (white space) and
+//! the case of reserved words; every token and every comment and pragma is
+//! written with its source text, in source order. So the output can differ
+//! from the input only in the ways [`crate::format`] then checks (the tree
+//! and the trivia are compared after every run).
+//!
+//! Structure comes from a stack of open blocks (POU, VAR block, IF, CASE...)
+//! kept from the keywords themselves, which is all layout needs: where a
+//! line must end (after `;`, THEN, DO, a CASE label...), how deep the next
+//! line is indented, and where a user's own line break is a continuation of
+//! the same statement (indented one level more). Line breaks the user wrote
+//! inside a statement are kept; blank lines are kept, at most one in a row.
+
+use stc_syntax::lexer::{Trivia, TriviaKind};
+use stc_syntax::token::{ElemType, Keyword, Token, TokenKind};
+
+use crate::{KeywordCase, Options};
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Block {
+    Pou,
+    Type,
+    Struct,
+    Var,
+    Config,
+    Resource,
+    If,
+    Case,
+    For,
+    While,
+    Repeat,
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Frame {
+    block: Block,
+    /// Indentation level of the line that opened the block.
+    indent: usize,
+    /// Still in the block's head (`IF cond` before THEN, a POU's name line).
+    header: bool,
+    /// In a CASE: inside an arm (after its label), whose body is one level
+    /// deeper than the labels.
+    arm: bool,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Pending {
+    None,
+    /// The next token starts a new line.
+    Break,
+    /// The next token starts a new line unless it is a `;` (after END_IF...).
+    BreakUnlessSemi,
+}
+
+/// One element of the source in order: a token (index into the tokens) or
+/// a comment/pragma.
+#[derive(Clone, Copy)]
+enum Elem {
+    Tok(usize),
+    Triv(Trivia),
+}
+
+struct Layout<'a> {
+    text: &'a str,
+    base: u32,
+    toks: &'a [Token],
+    opts: &'a Options,
+    out: String,
+    /// Whether the current output line has content.
+    line_has_content: bool,
+    stack: Vec<Frame>,
+    depth: usize,
+    pending: Pending,
+    at_stmt_start: bool,
+    /// After VAR (and its qualifiers) until the first declaration.
+    var_header: bool,
+    /// The tokens from a CASE label's first token to its `:`.
+    in_label: bool,
+    prev_tok: Option<TokenKind>,
+    /// The previous token was a unary `+`/`-`.
+    prev_unary: bool,
+    prev_was_line_comment: bool,
+    prev_was_trivia: bool,
+    /// Indentation of the current output line.
+    line_indent: usize,
+}
+
+/// Lays out `text` (whose first byte is at `base`) from its tokens and
+/// trivia. Never fails: the caller checks the result.
+pub(crate) fn layout(
+    text: &str,
+    base: u32,
+    toks: &[Token],
+    trivia: &[Trivia],
+    opts: &Options,
+) -> String {
+    let mut elems = Vec::with_capacity(toks.len() + trivia.len());
+    let (mut i, mut j) = (0, 0);
+    let ntoks = toks
+        .iter()
+        .position(|t| t.kind == TokenKind::Eof)
+        .unwrap_or(toks.len());
+    while i < ntoks || j < trivia.len() {
+        if j < trivia.len() && (i >= ntoks || trivia[j].span.lo < toks[i].lo) {
+            elems.push(Elem::Triv(trivia[j]));
+            j += 1;
+        } else {
+            elems.push(Elem::Tok(i));
+            i += 1;
+        }
+    }
+    let mut l = Layout {
+        text,
+        base,
+        toks: &toks[..ntoks],
+        opts,
+        out: String::with_capacity(text.len() + text.len() / 8),
+        line_has_content: false,
+        stack: Vec::new(),
+        depth: 0,
+        pending: Pending::None,
+        at_stmt_start: true,
+        var_header: false,
+        in_label: false,
+        prev_tok: None,
+        prev_unary: false,
+        prev_was_line_comment: false,
+        prev_was_trivia: false,
+        line_indent: 0,
+    };
+    let start = if text.starts_with('\u{FEFF}') { 3 } else { 0 };
+    let mut prev_end = start;
+    for e in elems {
+        let (lo, hi) = match e {
+            Elem::Tok(i) => (toks[i].lo, toks[i].hi),
+            Elem::Triv(t) => (t.span.lo, t.span.hi),
+        };
+        let (lo, hi) = ((lo - base) as usize, (hi - base) as usize);
+        let newlines = text
+            .get(prev_end..lo)
+            .map_or(0, |gap| gap.bytes().filter(|&b| b == b'\n').count());
+        match e {
+            Elem::Tok(i) => l.token(i, newlines),
+            Elem::Triv(t) => l.trivia(t, newlines),
+        }
+        prev_end = hi;
+    }
+    if l.line_has_content {
+        l.out.push('\n');
+    }
+    l.out
+}
+
+fn is_operand_end(k: TokenKind) -> bool {
+    matches!(
+        k,
+        TokenKind::Ident
+            | TokenKind::Int
+            | TokenKind::BasedInt
+            | TokenKind::Real
+            | TokenKind::SString
+            | TokenKind::WString
+            | TokenKind::Duration
+            | TokenKind::Date
+            | TokenKind::Tod
+            | TokenKind::Dt
+            | TokenKind::Address
+            | TokenKind::PartialAccess
+            | TokenKind::RParen
+            | TokenKind::RBracket
+            | TokenKind::Caret
+            | TokenKind::Kw(Keyword::True | Keyword::False)
+    )
+}
+
+/// The block an END keyword closes.
+fn closes(k: Keyword) -> Option<Block> {
+    Some(match k {
+        Keyword::EndIf => Block::If,
+        Keyword::EndCase => Block::Case,
+        Keyword::EndFor => Block::For,
+        Keyword::EndWhile => Block::While,
+        Keyword::EndRepeat => Block::Repeat,
+        Keyword::EndVar => Block::Var,
+        Keyword::EndType => Block::Type,
+        Keyword::EndStruct => Block::Struct,
+        Keyword::EndProgram | Keyword::EndFunction | Keyword::EndFunctionBlock => Block::Pou,
+        Keyword::EndConfiguration => Block::Config,
+        Keyword::EndResource => Block::Resource,
+        _ => return None,
+    })
+}
+
+fn is_var_keyword(k: Keyword) -> bool {
+    matches!(
+        k,
+        Keyword::Var
+            | Keyword::VarAccess
+            | Keyword::VarConfig
+            | Keyword::VarExternal
+            | Keyword::VarGlobal
+            | Keyword::VarInOut
+            | Keyword::VarInput
+            | Keyword::VarOutput
+            | Keyword::VarTemp
+    )
+}
+
+impl<'a> Layout<'a> {
+    fn src(&self, i: usize) -> &'a str {
+        let t = &self.toks[i];
+        &self.text[(t.lo - self.base) as usize..(t.hi - self.base) as usize]
+    }
+
+    /// Indentation of a line that starts a statement or declaration in the
+    /// innermost open block.
+    fn body_level(&self) -> usize {
+        match self.stack.last() {
+            None => 0,
+            Some(f) if f.block == Block::Case && f.arm => f.indent + 2,
+            Some(f) => f.indent + 1,
+        }
+    }
+
+    fn newline(&mut self, indent: usize, blank: bool) {
+        if self.line_has_content {
+            self.out.push('\n');
+        }
+        if blank && !self.out.is_empty() && !self.out.ends_with("\n\n") {
+            self.out.push('\n');
+        }
+        for _ in 0..indent * self.opts.indent_width {
+            self.out.push(' ');
+        }
+        self.line_indent = indent;
+        self.line_has_content = false;
+    }
+
+    fn trivia(&mut self, t: Trivia, newlines: usize) {
+        let lo = (t.span.lo - self.base) as usize;
+        let hi = (t.span.hi - self.base) as usize;
+        let text = self.text[lo..hi].trim_end_matches(['\r', '\n']);
+        if newlines > 0 {
+            self.end_head_line();
+        }
+        if self.line_has_content && newlines == 0 && !self.prev_was_line_comment {
+            self.out.push(' ');
+        } else if self.line_has_content || self.out.is_empty() || newlines > 0 {
+            let level = if self.at_stmt_start || self.pending != Pending::None || self.var_header {
+                self.body_level()
+            } else {
+                self.body_level() + 1
+            };
+            self.newline(level, newlines > 1);
+        }
+        self.out.push_str(text);
+        self.line_has_content = true;
+        self.prev_was_line_comment = t.kind == TriviaKind::Comment && text.starts_with("//");
+        self.prev_was_trivia = true;
+    }
+
+    /// Whether the tokens from `i` up to a `:` at depth 0 are a CASE label
+    /// (a statement reaches `:=`, `;` or a keyword first).
+    fn is_case_label(&self, i: usize) -> bool {
+        let mut depth = 0usize;
+        for t in &self.toks[i..] {
+            match t.kind {
+                TokenKind::LParen | TokenKind::LBracket => depth += 1,
+                TokenKind::RParen | TokenKind::RBracket => depth = depth.saturating_sub(1),
+                TokenKind::Colon if depth == 0 => return true,
+                TokenKind::Assign | TokenKind::Semi | TokenKind::Arrow => return false,
+                TokenKind::Kw(k) if !matches!(k, Keyword::True | Keyword::False) => return false,
+                _ => {}
+            }
+        }
+        false
+    }
+
+    fn kind(&self, i: usize) -> TokenKind {
+        let k = self.toks[i].kind;
+        if self.opts.iec2 && stc_syntax::parser::third_edition_word(k) {
+            TokenKind::Ident
+        } else {
+            k
+        }
+    }
+
+    fn token(&mut self, i: usize, newlines: usize) {
+        let kind = self.kind(i);
+        let top = self.stack.last().copied();
+        // Where this token's line must start, if it must start one.
+        let mut forced: Option<usize> = None;
+        let mut blank = newlines > 1;
+        let mut push: Option<Block> = None;
+
+        if self.var_header {
+            let qualifier = matches!(
+                kind,
+                TokenKind::Kw(Keyword::Constant | Keyword::Retain | Keyword::NonRetain)
+            ) || (kind == TokenKind::Ident
+                && self.src(i).eq_ignore_ascii_case("PERSISTENT"));
+            if !qualifier {
+                self.var_header = false;
+                self.at_stmt_start = true;
+                forced = Some(self.body_level());
+            }
+        }
+        if newlines > 0 {
+            self.end_head_line();
+        }
+        let top_level = self.stack.is_empty();
+        let in_config = matches!(top.map(|f| f.block), Some(Block::Config | Block::Resource));
+        match kind {
+            TokenKind::Kw(k) if closes(k).is_some() => {
+                let b = closes(k);
+                if let Some(pos) = self.stack.iter().rposition(|f| Some(f.block) == b) {
+                    let f = self.stack[pos];
+                    self.stack.truncate(pos);
+                    forced = Some(f.indent);
+                } else {
+                    forced = Some(self.body_level());
+                }
+            }
+            TokenKind::Kw(Keyword::Elsif) if top.map(|f| f.block) == Some(Block::If) => {
+                forced = top.map(|f| f.indent);
+                if let Some(f) = self.stack.last_mut() {
+                    f.header = true;
+                }
+            }
+            TokenKind::Kw(Keyword::Else) => match top.map(|f| f.block) {
+                Some(Block::If) => forced = top.map(|f| f.indent),
+                Some(Block::Case) => {
+                    if let Some(f) = self.stack.last_mut() {
+                        f.arm = false;
+                        forced = Some(f.indent + 1);
+                    }
+                }
+                _ => {}
+            },
+            TokenKind::Kw(Keyword::Until) if top.map(|f| f.block) == Some(Block::Repeat) => {
+                forced = top.map(|f| f.indent);
+            }
+            TokenKind::Kw(k) if is_var_keyword(k) => {
+                forced = Some(self.body_level());
+                blank |= top_level && self.prev_tok.is_some() && !self.prev_was_trivia;
+                push = Some(Block::Var);
+            }
+            TokenKind::Kw(Keyword::Type) => {
+                forced = Some(self.body_level());
+                blank |= top_level && self.prev_tok.is_some() && !self.prev_was_trivia;
+                push = Some(Block::Type);
+            }
+            TokenKind::Kw(Keyword::Program | Keyword::Function | Keyword::FunctionBlock)
+                if !in_config =>
+            {
+                forced = Some(self.body_level());
+                blank |= top_level && self.prev_tok.is_some() && !self.prev_was_trivia;
+                push = Some(Block::Pou);
+            }
+            TokenKind::Kw(Keyword::Configuration) => {
+                forced = Some(self.body_level());
+                blank |= top_level && self.prev_tok.is_some() && !self.prev_was_trivia;
+                push = Some(Block::Config);
+            }
+            TokenKind::Kw(Keyword::Resource) => {
+                forced = Some(self.body_level());
+                push = Some(Block::Resource);
+            }
+            TokenKind::Kw(Keyword::Task | Keyword::Program) => {
+                forced = Some(self.body_level());
+            }
+            TokenKind::Kw(Keyword::If) => push = Some(Block::If),
+            TokenKind::Kw(Keyword::Case) => push = Some(Block::Case),
+            TokenKind::Kw(Keyword::For) => push = Some(Block::For),
+            TokenKind::Kw(Keyword::While) => push = Some(Block::While),
+            TokenKind::Kw(Keyword::Repeat) => push = Some(Block::Repeat),
+            TokenKind::Kw(Keyword::Struct) => push = Some(Block::Struct),
+            _ => {}
+        }
+        // A CASE label starts a line one level inside the CASE.
+        if let Some(f) = self.stack.last().copied() {
+            if f.block == Block::Case
+                && !f.header
+                && self.at_stmt_start
+                && self.depth == 0
+                && !matches!(kind, TokenKind::Kw(Keyword::Else | Keyword::EndCase))
+                && self.is_case_label(i)
+            {
+                if let Some(f) = self.stack.last_mut() {
+                    f.arm = false;
+                }
+                forced = Some(f.indent + 1);
+                self.in_label = true;
+            }
+        }
+
+        let continuation_break = newlines > 0
+            && !matches!(
+                kind,
+                TokenKind::Semi | TokenKind::Comma | TokenKind::RParen | TokenKind::RBracket
+            );
+        let must_break = forced.is_some()
+            || self.prev_was_line_comment
+            || self.pending == Pending::Break
+            || (self.pending == Pending::BreakUnlessSemi && kind != TokenKind::Semi)
+            || continuation_break;
+        if must_break && (self.line_has_content || self.out.is_empty()) {
+            let level = forced.unwrap_or_else(|| {
+                if self.at_stmt_start || self.pending != Pending::None {
+                    self.body_level()
+                } else {
+                    self.body_level() + 1
+                }
+            });
+            self.newline(level, blank);
+        } else if self.line_has_content && self.space_before(kind) {
+            self.out.push(' ');
+        }
+        self.write_token(i, kind);
+        self.line_has_content = true;
+        self.pending = Pending::None;
+        self.prev_was_line_comment = false;
+        self.prev_was_trivia = false;
+
+        // What the token opens or ends.
+        self.prev_unary = matches!(kind, TokenKind::Minus | TokenKind::Plus)
+            && !self.prev_tok.is_some_and(is_operand_end);
+        self.at_stmt_start = false;
+        if let Some(b) = push {
+            self.stack.push(Frame {
+                block: b,
+                indent: self.line_indent,
+                header: !matches!(b, Block::Var | Block::Type | Block::Struct | Block::Repeat),
+                arm: false,
+            });
+        }
+        match kind {
+            TokenKind::LParen | TokenKind::LBracket => self.depth += 1,
+            TokenKind::RParen | TokenKind::RBracket => self.depth = self.depth.saturating_sub(1),
+            TokenKind::Semi if self.depth == 0 => self.stmt_end(Pending::Break),
+            TokenKind::Colon if self.in_label => {
+                self.in_label = false;
+                if let Some(f) = self.stack.last_mut() {
+                    f.arm = true;
+                }
+                self.stmt_end(Pending::Break);
+            }
+            TokenKind::Kw(Keyword::Then) if top.map(|f| f.block) == Some(Block::If) => {
+                self.end_header();
+            }
+            TokenKind::Kw(Keyword::Do)
+                if matches!(top.map(|f| f.block), Some(Block::For | Block::While)) =>
+            {
+                self.end_header();
+            }
+            TokenKind::Kw(Keyword::Of)
+                if top.is_some_and(|f| f.block == Block::Case && f.header) =>
+            {
+                self.end_header();
+            }
+            TokenKind::Kw(Keyword::Else) => {
+                if let Some(f) = self.stack.last_mut() {
+                    if f.block == Block::Case {
+                        f.arm = true;
+                    }
+                }
+                self.stmt_end(Pending::Break);
+            }
+            TokenKind::Kw(Keyword::Repeat | Keyword::Type | Keyword::Struct) => {
+                self.stmt_end(Pending::Break)
+            }
+            TokenKind::Kw(k) if is_var_keyword(k) => self.var_header = true,
+            TokenKind::Kw(k) if closes(k).is_some() => self.stmt_end(Pending::BreakUnlessSemi),
+            _ => {}
+        }
+        self.prev_tok = Some(kind);
+    }
+
+    /// A line break the user wrote ends a POU's, configuration's or
+    /// resource's head line: what follows is its body.
+    fn end_head_line(&mut self) {
+        if let Some(f) = self.stack.last_mut() {
+            if f.header && matches!(f.block, Block::Pou | Block::Config | Block::Resource) {
+                f.header = false;
+                self.at_stmt_start = true;
+            }
+        }
+    }
+
+    fn stmt_end(&mut self, p: Pending) {
+        self.pending = p;
+        self.at_stmt_start = true;
+    }
+
+    fn end_header(&mut self) {
+        if let Some(f) = self.stack.last_mut() {
+            f.header = false;
+        }
+        self.stmt_end(Pending::Break);
+    }
+
+    /// Whether a space separates the previous token from one of `kind` on
+    /// the same line.
+    fn space_before(&self, kind: TokenKind) -> bool {
+        let Some(prev) = self.prev_tok else {
+            return false;
+        };
+        if self.prev_was_trivia {
+            return true;
+        }
+        match kind {
+            TokenKind::RParen
+            | TokenKind::RBracket
+            | TokenKind::Comma
+            | TokenKind::Semi
+            | TokenKind::Dot
+            | TokenKind::DotDot
+            | TokenKind::Hash
+            | TokenKind::Caret
+            | TokenKind::PartialAccess => return false,
+            TokenKind::Colon if self.in_label => return false,
+            _ => {}
+        }
+        match prev {
+            TokenKind::LParen | TokenKind::LBracket | TokenKind::Dot | TokenKind::DotDot => {
+                return false
+            }
+            TokenKind::Hash => return false,
+            TokenKind::Minus | TokenKind::Plus if self.prev_unary => {
+                // `- -x` stays apart so it does not read as one operator.
+                return matches!(kind, TokenKind::Minus | TokenKind::Plus);
+            }
+            _ => {}
+        }
+        match kind {
+            TokenKind::LParen => !matches!(prev, TokenKind::Ident),
+            TokenKind::LBracket => !matches!(
+                prev,
+                TokenKind::Ident
+                    | TokenKind::RBracket
+                    | TokenKind::RParen
+                    | TokenKind::Kw(Keyword::Array)
+                    | TokenKind::Elem(ElemType::String | ElemType::Wstring)
+            ),
+            _ => true,
+        }
+    }
+
+    fn write_token(&mut self, i: usize, kind: TokenKind) {
+        let src = self.src(i);
+        let reserved = kind.is_reserved_word();
+        match self.opts.keyword_case {
+            KeywordCase::Upper if reserved => self.out.push_str(&src.to_ascii_uppercase()),
+            KeywordCase::Lower if reserved => self.out.push_str(&src.to_ascii_lowercase()),
+            _ => self.out.push_str(src),
+        }
+    }
+}

@@ -65,7 +65,7 @@ enum Command {
         #[command(flatten)]
         common: Common,
         #[command(flatten)]
-        args: crate::run::RunArgs,
+        args: Box<crate::run::RunArgs>,
     },
     /// Format source files in place (canonical layout, comments kept).
     Fmt {
@@ -410,7 +410,7 @@ fn run(cli: Cli) -> Outcome {
             if let Some(m) = manifest {
                 args.apply_manifest(&m.run);
             }
-            crate::run::run(&opts, args)
+            crate::run::run(&opts, *args)
         }
         Command::Check { common, files } => {
             let (files, opts, _) = match common.project(files, false) {

@@ -5,10 +5,12 @@
 //! the same functions the command uses.
 
 pub mod cli;
+pub mod controller;
 pub mod driver;
 pub mod fmt_cmd;
 pub mod lsp_cmd;
 pub mod manifest;
+pub mod modbus;
 pub mod output;
 pub mod run;
 pub mod sources;

@@ -9,17 +9,19 @@
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
 use clap::{Args, ValueEnum};
 use stc_engine_c::{CEngine, Toolchain};
+use stc_runtime::iomap::{default_layout, Exchange, IoMap, ProcessImage, SimInputs};
 use stc_runtime::path::split_list;
 use stc_runtime::realtime::{RealTime, WallClock};
-use stc_runtime::Engine;
+use stc_runtime::{Between, Engine};
 use stc_runtime::{Format, Renderer, Report, Simulation, Stimulus, Unpaced, DEFAULT_MAX_STEPS};
 use stc_vm::Machine;
 
 use crate::cli::{Outcome, EXIT_ERRORS, EXIT_OK, EXIT_USAGE};
+use crate::controller::{All, RetainFile};
 use crate::driver::{self, Options};
 use crate::sources;
 
@@ -68,6 +70,26 @@ pub struct RunArgs {
     /// Pace the cycles with the wall clock (stop with Ctrl-C).
     #[arg(long)]
     pub realtime: bool,
+    /// Real time: the hardware allocation map (TOML) binding variables to
+    /// Modbus registers and simulated channels.
+    #[arg(long = "io-map", value_name = "FILE", requires = "realtime")]
+    pub io_map: Option<PathBuf>,
+    /// Real time: serve the process image over Modbus TCP (OpenPLC's
+    /// layout plus the allocation map).
+    #[arg(long, value_name = "HOST:PORT", requires = "realtime")]
+    pub modbus: Option<String>,
+    /// Real time: keep the RETAIN variables in FILE, restored at start
+    /// (warm start) and saved crash-safely at cycle ends.
+    #[arg(long, value_name = "FILE", requires = "realtime")]
+    pub retain: Option<PathBuf>,
+    /// How often the retained variables are saved, rounded up to whole
+    /// ticks [default: after every cycle].
+    #[arg(long = "retain-interval", value_name = "DURATION", requires = "retain")]
+    pub retain_interval: Option<String>,
+    /// Cold start: do not restore the retained variables (they are still
+    /// saved).
+    #[arg(long, requires = "retain")]
+    pub cold: bool,
     /// What runs the program: the bytecode VM, native code compiled
     /// in-process (Cranelift), or the generated C built with the system C
     /// compiler (`$CC`, else `cc`) and loaded.
@@ -299,6 +321,17 @@ fn configure_and_run(image: Box<dyn Engine>, args: &RunArgs) -> Outcome {
             }
         }
     };
+    let retain_interval = match args.retain_interval.as_deref().map(|t| {
+        stc_runtime::parse_tick(t).map_err(|_| {
+            format!(
+                "--retain-interval {t}: expected a duration longer than zero such as 100ms or T#1s"
+            )
+        })
+    }) {
+        None => None,
+        Some(Ok(ns)) => Some(ns),
+        Some(Err(e)) => return usage_error(e),
+    };
     let tick_ns = match args
         .tick
         .as_deref()
@@ -354,7 +387,58 @@ fn configure_and_run(image: Box<dyn Engine>, args: &RunArgs) -> Outcome {
         ReportFormat::Csv => Format::Csv,
     };
     if args.realtime {
-        let mut o = realtime(&mut sim, cycles, args.trace, format);
+        let mut between = All(Vec::new());
+        let map = match &args.io_map {
+            None => None,
+            Some(path) => {
+                let text = match std::fs::read_to_string(path) {
+                    Ok(t) => t,
+                    Err(e) => return usage_error(format!("cannot read {}: {e}", path.display())),
+                };
+                match IoMap::parse(&path.display().to_string(), &text, &sim.scope()) {
+                    Ok(m) => Some(m),
+                    Err(e) => return usage_error(e),
+                }
+            }
+        };
+        let mut notes = console::stderr();
+        if let Some(path) = &args.retain {
+            let mut err = console::stderr();
+            let warn = Box::new(move |w: String| {
+                if let Some(f) = &mut err {
+                    let _ = writeln!(f, "{w}");
+                }
+            });
+            between.0.push(Box::new(RetainFile::open(
+                &mut sim,
+                path,
+                retain_interval,
+                args.cold,
+                warn,
+            )));
+        }
+        let (modbus_entries, sim_inputs) = match map {
+            Some(m) => (m.modbus, m.sim),
+            None => (default_layout(sim.model()), Vec::new()),
+        };
+        if !sim_inputs.is_empty() {
+            between.0.push(Box::new(SimInputs(sim_inputs)));
+        }
+        if let Some(addr) = &args.modbus {
+            let mut image = ProcessImage::new(modbus_entries);
+            image.refresh(sim.engine());
+            let image = Arc::new(Mutex::new(image));
+            match crate::modbus::start(addr, Arc::clone(&image)) {
+                Ok(bound) => {
+                    if let Some(f) = &mut notes {
+                        let _ = writeln!(f, "note: modbus: listening on {bound}");
+                    }
+                }
+                Err(e) => return usage_error(e),
+            }
+            between.0.push(Box::new(Exchange(image)));
+        }
+        let mut o = realtime(&mut sim, cycles, args.trace, format, &mut between);
         o.stderr.insert_str(0, &warnings);
         o
     } else {
@@ -386,7 +470,13 @@ fn finish(stdout: String, mut stderr: String, result: Result<(), stc_vm::VmFault
 
 /// Real time: reports and warnings are written as they happen, not
 /// collected.
-fn realtime(sim: &mut Simulation, cycles: Option<u64>, trace: bool, format: Format) -> Outcome {
+fn realtime(
+    sim: &mut Simulation,
+    cycles: Option<u64>,
+    trace: bool,
+    format: Format,
+    between: &mut dyn Between,
+) -> Outcome {
     let stop = sigint::install();
     let (mut stdout, mut stderr) = (String::new(), String::new());
     let (mut out_stream, mut err_stream) = (console::stdout(), console::stderr());
@@ -408,7 +498,7 @@ fn realtime(sim: &mut Simulation, cycles: Option<u64>, trace: bool, format: Form
         }
         None => stdout.push_str(&renderer.render(r)),
     };
-    let result = stc_runtime::run(sim, cycles, trace, &mut pacer, &mut emit);
+    let result = stc_runtime::run_between(sim, cycles, trace, &mut pacer, &mut emit, between);
     finish(stdout, stderr, result)
 }
 
@@ -444,9 +534,10 @@ mod console {
     }
 }
 
-/// Ctrl-C in real time: the first one stops the run after the current
-/// cycle (the last report is still printed); a second one ends the process
-/// at once, as an interrupted program would.
+/// Ctrl-C (or SIGTERM, as a service manager stops a controller) in real
+/// time: the first one stops the run after the current cycle (the last
+/// report is still printed, the retained variables saved); a second one
+/// ends the process at once, as an interrupted program would.
 mod sigint {
     use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -457,6 +548,8 @@ mod sigint {
         use std::os::raw::c_int;
 
         pub const SIGINT: c_int = 2;
+        /// 15 on every Unix stc runs on (Linux, the BSDs, macOS).
+        pub const SIGTERM: c_int = 15;
 
         extern "C" {
             /// `signal(2)`; the handler is passed as an address, which is
@@ -488,6 +581,7 @@ mod sigint {
                 // requires of a handler.
                 unsafe {
                     sys::signal(sys::SIGINT, on_sigint as extern "C" fn(_) as usize);
+                    sys::signal(sys::SIGTERM, on_sigint as extern "C" fn(_) as usize);
                 }
             });
         }

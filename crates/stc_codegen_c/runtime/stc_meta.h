@@ -52,6 +52,7 @@ typedef struct {
     uint8_t in_frame;       /* lives in a call's frame (no offset here) */
     uint8_t is_ref;         /* the member holds a void * to the variable */
     uint8_t constant;       /* declared CONSTANT */
+    uint8_t retain;         /* declared RETAIN */
     const char *location;   /* "%QX0.0" for a located variable, else NULL */
 } stc_member;
 
@@ -124,6 +125,7 @@ typedef struct {
     int32_t config;                 /* index in stc_configs, -1: top level */
     const char *location;           /* "%IX0.0" or NULL */
     uint8_t constant;
+    uint8_t retain;                 /* declared RETAIN */
 } stc_global;
 
 typedef struct {

@@ -39,6 +39,7 @@ struct CMember {
     in_frame: u8,
     is_ref: u8,
     constant: u8,
+    retain: u8,
     location: *const c_char,
 }
 
@@ -117,6 +118,7 @@ struct CGlobal {
     config: i32,
     location: *const c_char,
     constant: u8,
+    retain: u8,
 }
 
 #[repr(C)]
@@ -340,6 +342,7 @@ impl Tables {
                     config: u32::try_from(g.config).ok(),
                     location: location(g.location),
                     constant: g.constant != 0,
+                    retain: g.retain != 0,
                 })
             })
             .collect::<Result<Vec<_>, Error>>()?;
@@ -466,5 +469,6 @@ unsafe fn var(m: &CMember) -> Option<VarDesc> {
         is_ref: m.is_ref != 0,
         location: location(m.location),
         constant: m.constant != 0,
+        retain: m.retain != 0,
     })
 }

@@ -239,6 +239,9 @@ pub struct VarDesc {
     pub location: Option<DirectAddress>,
     /// Declared CONSTANT: not to be changed from outside.
     pub constant: bool,
+    /// Declared in a RETAIN block: kept across a warm restart
+    /// (`stc run --realtime --retain`).
+    pub retain: bool,
 }
 
 /// A POU: its variables, and the type of its instances.
@@ -270,6 +273,8 @@ pub struct GlobalDesc {
     pub config: Option<u32>,
     pub location: Option<DirectAddress>,
     pub constant: bool,
+    /// Declared in a VAR_GLOBAL RETAIN block.
+    pub retain: bool,
 }
 
 #[derive(Clone, Debug, PartialEq)]

@@ -23,6 +23,14 @@ pub enum Error {
         line: usize,
         message: String,
     },
+    /// A mistake in the allocation map (`--io-map`): its name, the 1-based
+    /// line, the problem.
+    #[error("{file}:{line}: {message}")]
+    Map {
+        file: String,
+        line: usize,
+        message: String,
+    },
     /// Any other bad option (`--tick`, `--set` syntax, `--cycles`).
     #[error("{0}")]
     Option(String),

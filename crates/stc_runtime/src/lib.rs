@@ -17,9 +17,11 @@
 
 pub mod engine;
 pub mod error;
+pub mod iomap;
 pub mod path;
 pub mod realtime;
 pub mod report;
+pub mod retain;
 pub mod schedule;
 pub mod sim;
 pub mod stimulus;
@@ -32,7 +34,9 @@ pub use engine::{Engine, Memory};
 pub use error::Error;
 pub use report::{Format, Renderer, Report};
 pub use schedule::{choose, Chosen, Plan};
-pub use sim::{run, Options, Pacer, Simulation, Unpaced, DEFAULT_MAX_STEPS};
+pub use sim::{
+    run, run_between, Between, Nothing, Options, Pacer, Simulation, Unpaced, DEFAULT_MAX_STEPS,
+};
 pub use stimulus::Stimulus;
 
 /// Reads a `--tick` duration: `10ms` or `T#10ms`, longer than zero.

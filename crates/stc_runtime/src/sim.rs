@@ -28,6 +28,7 @@ use crate::engine::{read_value, write_value, Engine};
 use crate::error::{Error, Result};
 use crate::path::{Place, Scope, View};
 use crate::report::Report;
+use crate::retain::{RetainError, Retained};
 use crate::schedule::{choose, Plan};
 use crate::stimulus::Stimulus;
 use crate::value::{parse_for, read};
@@ -90,6 +91,9 @@ pub struct Simulation {
     order: Vec<usize>,
     /// Per instance of the plan: the task it runs in (its watchdog budget).
     task_of: Vec<Option<usize>>,
+    /// The retained variables restored at a warm start, and their image:
+    /// [`Simulation::restart`] restores them again.
+    warm: Option<(Retained, Vec<u8>)>,
 }
 
 impl Simulation {
@@ -206,6 +210,7 @@ impl Simulation {
             fired: vec![false; tasks],
             order: Vec::new(),
             task_of,
+            warm: None,
         };
         sim.apply_sets()?;
         Ok(sim)
@@ -223,14 +228,41 @@ impl Simulation {
         Ok(())
     }
 
-    /// Back to the state before the first cycle (after `--set`).
+    /// Back to the state before the first cycle (after a warm start's
+    /// restore and `--set`).
     pub fn restart(&mut self) {
         self.engine.reset();
         self.next_input = 0;
         self.single_prev.fill(false);
         self.completed = 0;
         // The same writes succeeded on the same fresh memory before.
+        if let Some((r, image)) = &self.warm {
+            let _ = r.restore(self.engine.as_mut(), image);
+        }
         let _ = self.apply_sets();
+    }
+
+    /// The retained variables of what runs ([`crate::retain`]).
+    pub fn retained(&self) -> Retained {
+        Retained::new(&self.model, &self.plan)
+    }
+
+    /// The image of the retained variables `r` after the last completed
+    /// cycle.
+    pub fn save_retained(&self, r: &Retained) -> Option<Vec<u8>> {
+        r.save(self.engine.as_ref(), self.completed)
+    }
+
+    /// A warm start, before the first cycle: restores the retained
+    /// variables from `image` (checked whole first: on an error nothing is
+    /// changed), then applies `--set` again so the command line wins.
+    /// Returns the cycle the image was taken after.
+    pub fn warm_start(&mut self, r: Retained, image: Vec<u8>) -> Result<u64, RetainError> {
+        let cycle = r.restore(self.engine.as_mut(), &image)?;
+        self.warm = Some((r, image));
+        // The same writes succeeded on this memory before.
+        let _ = self.apply_sets();
+        Ok(cycle)
     }
 
     pub fn plan(&self) -> &Plan {
@@ -240,6 +272,25 @@ impl Simulation {
     /// The engine the program runs on.
     pub fn engine(&self) -> &dyn Engine {
         self.engine.as_ref()
+    }
+
+    /// The engine, to exchange the process image between cycles.
+    pub fn engine_mut(&mut self) -> &mut dyn Engine {
+        self.engine.as_mut()
+    }
+
+    /// The program model.
+    pub fn model(&self) -> &Arc<Model> {
+        &self.model
+    }
+
+    /// What paths are resolved against in this run.
+    pub fn scope(&self) -> Scope<'_> {
+        Scope {
+            model: &self.model,
+            instances: &self.plan.instances,
+            config: self.plan.config,
+        }
     }
 
     /// The watched places, in report order.
@@ -509,6 +560,23 @@ impl Pacer for Unpaced {
     fn after(&mut self, _cycle: u64) {}
 }
 
+/// What a controller does between cycles: exchange the process image with
+/// the I/O before a cycle, save retained variables after one. Nothing in
+/// simulation.
+pub trait Between {
+    /// Cycle `k` is due and about to run.
+    fn before_cycle(&mut self, _sim: &mut Simulation, _k: u64) {}
+    /// Cycle `k` has completed (not called for a cycle that faulted).
+    fn after_cycle(&mut self, _sim: &mut Simulation, _k: u64) {}
+    /// The run ends without a fault, after cycle `sim.completed()`.
+    fn at_end(&mut self, _sim: &mut Simulation) {}
+}
+
+/// Nothing between cycles.
+pub struct Nothing;
+
+impl Between for Nothing {}
+
 /// Runs up to `cycles` cycles (`None`: until the pacer stops), passing
 /// each report to print to `emit`: with `trace` one after every cycle,
 /// else one at the end. On a fault the last report is that of the last
@@ -521,14 +589,28 @@ pub fn run(
     pacer: &mut dyn Pacer,
     emit: &mut dyn FnMut(&Report),
 ) -> Result<(), VmFault> {
+    run_between(sim, cycles, trace, pacer, emit, &mut Nothing)
+}
+
+/// [`run`], with `between` called around every cycle.
+pub fn run_between(
+    sim: &mut Simulation,
+    cycles: Option<u64>,
+    trace: bool,
+    pacer: &mut dyn Pacer,
+    emit: &mut dyn FnMut(&Report),
+    between: &mut dyn Between,
+) -> Result<(), VmFault> {
     let mut emitted_last = false;
     loop {
         let k = sim.completed() + 1;
         if cycles.is_some_and(|n| k > n) || k > sim.last_cycle() || !pacer.before(k) {
             break;
         }
+        between.before_cycle(sim, k);
         match sim.run_cycle() {
             Ok(()) => {
+                between.after_cycle(sim, k);
                 pacer.after(k);
                 emitted_last = trace;
                 if trace {
@@ -549,6 +631,7 @@ pub fn run(
             }
         }
     }
+    between.at_end(sim);
     if !emitted_last {
         emit(&sim.report());
     }

@@ -65,6 +65,7 @@ fn var(name: &str, ty: TypeRef, kind: VarKind, offset: u32) -> VarDesc {
         is_ref: false,
         location: None,
         constant: false,
+        retain: false,
     }
 }
 
@@ -110,6 +111,7 @@ fn global(name: &str, ty: TypeRef, offset: u32, config: Option<u32>) -> GlobalDe
         config,
         location: None,
         constant: false,
+        retain: false,
     }
 }
 

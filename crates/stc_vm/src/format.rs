@@ -16,8 +16,9 @@ use crate::instr::{Instr, Op};
 pub const MAGIC: &[u8; 4] = b"STBC";
 /// The format version. 2: elementary types, variable, POU and type kinds,
 /// scalar kinds and fault codes are stored by their explicit codes (faults
-/// 1-based), standard functions by name.
-pub const VERSION: u32 = 2;
+/// 1-based), standard functions by name. 3: a RETAIN flag after the
+/// CONSTANT flag of every variable and global.
+pub const VERSION: u32 = 3;
 
 #[derive(Debug, thiserror::Error, PartialEq, Eq)]
 pub enum LoadError {
@@ -134,6 +135,7 @@ impl Writer {
                 w.u8(v.is_ref as u8);
                 w.opt(&v.location, |w, a| w.address(a));
                 w.u8(v.constant as u8);
+                w.u8(v.retain as u8);
             });
         });
         w.seq(&model.globals, |w, g| {
@@ -143,6 +145,7 @@ impl Writer {
             w.opt(&g.config, |w, c| w.u32(*c));
             w.opt(&g.location, |w, a| w.address(a));
             w.u8(g.constant as u8);
+            w.u8(g.retain as u8);
         });
         w.seq(&model.configs, |w, c| {
             w.str(&c.name);
@@ -638,6 +641,7 @@ impl Reader<'_> {
                         is_ref: r.bool()?,
                         location: r.opt(|r| r.address())?,
                         constant: r.bool()?,
+                        retain: r.bool()?,
                     })
                 })?,
             };
@@ -652,6 +656,7 @@ impl Reader<'_> {
                 config: r.opt(|r| r.u32())?,
                 location: r.opt(|r| r.address())?,
                 constant: r.bool()?,
+                retain: r.bool()?,
             })
         })?;
         let configs = self.seq(|r| {

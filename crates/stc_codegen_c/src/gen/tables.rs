@@ -242,13 +242,14 @@ impl Gen<'_> {
             let ty = self.meta_type(g.ty)?;
             let config = m.config_of_global(gi).map_or(-1, |c| c as i64);
             globals_out.push(format!(
-                "{{ {}, {ty}U, &{}, {config}, {}, {}U }}",
+                "{{ {}, {ty}U, &{}, {config}, {}, {}U, {}U }}",
                 c_str(m.spelled(g.name, g.span)),
                 global_lvalue(m, gi),
                 g.location
                     .as_ref()
                     .map_or("NULL".to_string(), |a| c_str(&a.to_string())),
-                g.constant as u8
+                g.constant as u8,
+                g.retain as u8
             ));
         }
         let mut io_out = Vec::new();
@@ -456,13 +457,14 @@ impl Gen<'_> {
                         )
                     };
                     members.push(format!(
-                        "{{ {}, {}U, {off}, {}U, {}U, {}U, {}U, {} }}",
+                        "{{ {}, {}U, {off}, {}U, {}U, {}U, {}U, {}U, {} }}",
                         c_str(&v.name),
                         v.ty,
                         v.kind.code(),
                         v.in_frame as u8,
                         v.is_ref as u8,
                         v.constant as u8,
+                        v.retain as u8,
                         v.location
                             .as_ref()
                             .map_or("NULL".to_string(), |a| c_str(&a.to_string()))
@@ -615,7 +617,7 @@ impl Gen<'_> {
                 let mut members = Vec::new();
                 for f in &fields {
                     members.push(format!(
-                        "{{ {}, {}U, offsetof({tn}, m_{}), STC_VK_FIELD, 0U, 0U, 0U, NULL }}",
+                        "{{ {}, {}U, offsetof({tn}, m_{}), STC_VK_FIELD, 0U, 0U, 0U, 0U, NULL }}",
                         c_str(&f.name),
                         f.ty,
                         names::ident(&f.name)

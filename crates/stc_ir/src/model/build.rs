@@ -160,6 +160,7 @@ impl<'a> Builder<'a> {
                 config,
                 location: g.location.clone(),
                 constant: g.constant,
+                retain: g.retain,
             });
         }
         for (ci, c) in m.configs.iter().enumerate() {
@@ -746,6 +747,7 @@ impl<'a> Builder<'a> {
                 is_ref: v.storage == Storage::Ref,
                 location: v.location.clone(),
                 constant: v.constant,
+                retain: v.retain,
             });
         }
         self.model.pous[p.index()].vars = vars;

@@ -360,8 +360,11 @@ impl Parser<'_> {
             } else if self.eat_kw(Keyword::NonRetain) {
                 retention = Some(Retention::NonRetain);
             } else if self.at_word("PERSISTENT") {
-                let span = self.bump().span();
-                self.unsupported(span, "PERSISTENT variables are");
+                // CODESYS's `VAR PERSISTENT` / `VAR RETAIN PERSISTENT`:
+                // kept across restarts like RETAIN (docs/runtime.md says
+                // what of CODESYS's meaning is not kept).
+                self.bump();
+                retention = Some(Retention::Retain);
             } else {
                 break;
             }

@@ -447,6 +447,9 @@ fn configure_and_run(image: Box<dyn Engine>, args: &RunArgs) -> Outcome {
         let result = stc_runtime::run(&mut sim, cycles, args.trace, &mut Unpaced, &mut |r| {
             stdout.push_str(&renderer.render(r))
         });
+        if let Err(f) = &result {
+            stdout.push_str(&renderer.fault(f));
+        }
         finish(stdout, warnings, result)
     }
 }
@@ -499,6 +502,16 @@ fn realtime(
         None => stdout.push_str(&renderer.render(r)),
     };
     let result = stc_runtime::run_between(sim, cycles, trace, &mut pacer, &mut emit, between);
+    if let Err(f) = &result {
+        let tail = renderer.fault(f);
+        match &mut out_stream {
+            Some(out) => {
+                let _ = out.write_all(tail.as_bytes());
+                let _ = out.flush();
+            }
+            None => stdout.push_str(&tail),
+        }
+    }
     finish(stdout, stderr, result)
 }
 

@@ -3,15 +3,73 @@
 //! run through `stc run` in-process (`stc::cli::run_args`, the same path as
 //! the command) with `--format json`, and the values of its `// expect:`
 //! lines are compared with the reports, as JSON values (numbers by value).
-//! A case with `// expect-fault: KIND @ LINE` must stop with exit status 3
-//! and that fault, its `expect:` lines then being checked against the
-//! report of the last completed cycle.
+//! A case with `// expect-fault: KIND @ LINE[:COL] [in INSTANCE (POU)]`
+//! must stop with exit status 3 and that fault (on stderr, and as the JSON
+//! object of the last stdout line), its `expect:` lines then being checked
+//! against the report of the last completed cycle.
 
 mod common;
 
 use std::path::{Path, PathBuf};
 
 use serde_json::Value;
+
+/// A fault: expected, or as `stc run` reported it.
+#[derive(Debug, PartialEq, Eq)]
+struct Fault {
+    kind: String,
+    line: u32,
+    /// Not checked when the expectation leaves it out.
+    col: Option<u32>,
+    /// `INSTANCE (POU)`; not checked when the expectation leaves it out.
+    place: Option<String>,
+}
+
+impl Fault {
+    /// Whether the reported fault `got` is this expected one.
+    fn matches(&self, got: &Fault) -> bool {
+        self.kind == got.kind
+            && self.line == got.line
+            && self.col.is_none_or(|c| got.col == Some(c))
+            && self
+                .place
+                .as_ref()
+                .is_none_or(|p| got.place.as_ref() == Some(p))
+    }
+}
+
+impl std::fmt::Display for Fault {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "`{}` at line {}", self.kind, self.line)?;
+        if let Some(c) = self.col {
+            write!(f, ":{c}")?;
+        }
+        if let Some(p) = &self.place {
+            write!(f, " in {p}")?;
+        }
+        Ok(())
+    }
+}
+
+/// `KIND @ LINE[:COL] [in INSTANCE (POU)]`.
+fn parse_expected_fault(text: &str) -> Option<Fault> {
+    let (kind, rest) = text.split_once('@')?;
+    let rest = rest.trim();
+    let (at, place) = match rest.split_once(" in ") {
+        Some((a, p)) => (a.trim(), Some(p.trim().to_string())),
+        None => (rest, None),
+    };
+    let (line, col) = match at.split_once(':') {
+        Some((l, c)) => (l.trim().parse().ok()?, Some(c.trim().parse().ok()?)),
+        None => (at.parse().ok()?, None),
+    };
+    Some(Fault {
+        kind: kind.trim().to_string(),
+        line,
+        col,
+        place,
+    })
+}
 
 /// One `// expect:` or `// expect @K:` line.
 struct Expect {
@@ -28,8 +86,8 @@ struct Directives {
     /// The `// run:` options, split as a shell would.
     options: Vec<String>,
     expects: Vec<Expect>,
-    /// `// expect-fault: KIND @ LINE`.
-    fault: Option<(String, u32)>,
+    /// `// expect-fault: KIND @ LINE[:COL] [in INSTANCE (POU)]`.
+    fault: Option<Fault>,
     has_run_line: bool,
 }
 
@@ -61,14 +119,11 @@ fn directives(case: &Path) -> Result<Directives, String> {
                     .ok_or_else(|| format!("{at}: unbalanced quotes in `// run:`"))?;
                 d.options = common::with_stimulus_beside(words, &dir);
             } else if let Some(rest) = line.strip_prefix("// expect-fault:") {
-                let (kind, l) = rest
-                    .rsplit_once('@')
-                    .ok_or_else(|| format!("{at}: expected `// expect-fault: KIND @ LINE`"))?;
-                let l = l
-                    .trim()
-                    .parse()
-                    .map_err(|_| format!("{at}: `{}` is not a line number", l.trim()))?;
-                d.fault = Some((kind.trim().to_string(), l));
+                d.fault = Some(parse_expected_fault(rest).ok_or_else(|| {
+                    format!(
+                        "{at}: expected `// expect-fault: KIND @ LINE[:COL] [in INSTANCE (POU)]`"
+                    )
+                })?);
             } else if let Some(rest) = line.strip_prefix("// expect") {
                 let (cycle, rest) = match rest.trim_start().strip_prefix('@') {
                     Some(r) => {
@@ -132,15 +187,36 @@ fn lookup<'r>(report: &'r Value, path: &str) -> Option<&'r Value> {
         .map(|(_, v)| v)
 }
 
-/// `fault: KIND in POU at FILE:LINE:COL` → (KIND, LINE).
-fn fault_line(stderr: &str) -> Option<(String, u32)> {
+/// `fault: KIND in INSTANCE (POU) at FILE:LINE:COL`.
+fn fault_line(stderr: &str) -> Option<Fault> {
     let l = stderr.lines().find_map(|l| l.strip_prefix("fault: "))?;
     let (kind, rest) = l.split_once(" in ")?;
-    let (_, at) = rest.rsplit_once(" at ")?;
+    let (place, at) = rest.rsplit_once(" at ")?;
     let mut parts = at.rsplitn(3, ':');
-    let _col = parts.next()?;
+    let col = parts.next()?.parse().ok()?;
     let line = parts.next()?.parse().ok()?;
-    Some((kind.to_string(), line))
+    Some(Fault {
+        kind: kind.to_string(),
+        line,
+        col: Some(col),
+        place: Some(place.to_string()),
+    })
+}
+
+/// The JSON fault object (`{"fault":{...}}`) as a [`Fault`].
+fn fault_object(v: &Value) -> Option<Fault> {
+    let f = v.get("fault")?;
+    Some(Fault {
+        kind: f.get("kind")?.as_str()?.to_string(),
+        line: u32::try_from(f.get("line")?.as_u64()?).ok()?,
+        col: Some(u32::try_from(f.get("column")?.as_u64()?).ok()?),
+        place: Some(format!(
+            "{} ({})",
+            f.get("instance")?.as_str()?,
+            f.get("pou")?.as_str()?
+        )),
+    })
+    .filter(|_| f.get("details").is_some_and(Value::is_object))
 }
 
 fn run_case(case: &Path) -> Result<(), String> {
@@ -166,20 +242,30 @@ fn run_case(case: &Path) -> Result<(), String> {
     let out = stc::cli::run_args(&argv);
 
     let mut problems = Vec::new();
+    let mut stdout_lines: Vec<&str> = out.stdout.lines().collect();
     match &d.fault {
-        Some((kind, line)) => {
+        Some(want) => {
             if out.status != 3 {
                 problems.push(format!(
-                    "expected a fault ({kind} @ {line}), got exit status {}",
+                    "expected a fault ({want}), got exit status {}",
                     out.status
                 ));
             } else {
-                match fault_line(&out.stderr) {
-                    Some((k, l)) if k == *kind && l == *line => {}
-                    Some((k, l)) => problems.push(format!(
-                        "expected the fault `{kind}` at line {line}, got `{k}` at line {l}"
-                    )),
+                let text = fault_line(&out.stderr);
+                match &text {
+                    Some(got) if want.matches(got) => {}
+                    Some(got) => problems.push(format!("expected the fault {want}, got {got}")),
                     None => problems.push("exit status 3 but no `fault:` line".into()),
+                }
+                // The JSON object, last on stdout, says the same.
+                let object = stdout_lines
+                    .pop()
+                    .and_then(|l| serde_json::from_str::<Value>(l).ok())
+                    .and_then(|v| fault_object(&v));
+                if object.is_none() || object != text {
+                    problems.push(format!(
+                        "the last stdout line is not the fault's JSON object ({object:?} vs {text:?})"
+                    ));
                 }
             }
         }
@@ -190,7 +276,7 @@ fn run_case(case: &Path) -> Result<(), String> {
     }
 
     let mut reports = Vec::new();
-    for l in out.stdout.lines() {
+    for l in stdout_lines {
         match serde_json::from_str::<Value>(l) {
             Ok(v) => reports.push(v),
             Err(e) => problems.push(format!("a report line is not JSON ({e}): {l}")),
@@ -285,7 +371,24 @@ fn directives_are_read_like_a_shell_would() {
             (Some(2), "Main.s", "\"a=b\"".to_string())
         ]
     );
-    assert_eq!(d.fault, Some(("division by zero".into(), 12)));
+    assert_eq!(
+        d.fault,
+        Some(Fault {
+            kind: "division by zero".into(),
+            line: 12,
+            col: None,
+            place: None
+        })
+    );
+    assert_eq!(
+        parse_expected_fault(" subrange violation @ 7:12 in Main.fbs[2] (Scale)"),
+        Some(Fault {
+            kind: "subrange violation".into(),
+            line: 7,
+            col: Some(12),
+            place: Some("Main.fbs[2] (Scale)".into())
+        })
+    );
     assert!(same(&serde_json::json!(1.0), &serde_json::json!(1)));
     assert!(same(
         &serde_json::json!({"a": [1, 2.5]}),
@@ -293,8 +396,13 @@ fn directives_are_read_like_a_shell_would() {
     ));
     assert!(!same(&serde_json::json!("1"), &serde_json::json!(1)));
     assert_eq!(
-        fault_line("fault: MUX selector out of range in Main at dir/a b.st:13:5\n"),
-        Some(("MUX selector out of range".into(), 13))
+        fault_line("fault: MUX selector out of range in Main (Main) at dir/a b.st:13:5\n"),
+        Some(Fault {
+            kind: "MUX selector out of range".into(),
+            line: 13,
+            col: Some(5),
+            place: Some("Main (Main)".into())
+        })
     );
 }
 
@@ -399,11 +507,15 @@ fn a_fault_exits_3_with_the_last_completed_cycle() {
     assert_eq!(out.status, 3);
     assert_eq!(
         out.stdout,
-        "{\"cycle\":2,\"time\":\"T#10ms\",\"values\":{\"Main.count\":2}}\n"
+        format!(
+            "{{\"cycle\":2,\"time\":\"T#10ms\",\"values\":{{\"Main.count\":2}}}}\n\
+             {{\"fault\":{{\"kind\":\"division by zero\",\"instance\":\"Main\",\"pou\":\"Main\",\
+             \"file\":\"{f}\",\"line\":15,\"column\":14,\"details\":{{}}}}}}\n"
+        )
     );
     assert_eq!(
         out.stderr,
-        format!("fault: division by zero in Main at {f}:15:1\n")
+        format!("fault: division by zero in Main (Main) at {f}:15:14\n")
     );
 }
 

@@ -24,11 +24,24 @@ uint32_t stc_fault_site = 0U;
 int64_t stc_clock = 0;
 uint64_t stc_steps = 0U;
 
+const void *stc_fault_inst = NULL;
+uint32_t stc_fault_pou = STC_NO_POU;
+
 void stc_fault(uint32_t kind, uint32_t site)
 {
     if (stc_fault_kind == 0U) {
         stc_fault_kind = kind;
         stc_fault_site = site;
+        stc_fault_inst = NULL;
+        stc_fault_pou = STC_NO_POU;
+    }
+}
+
+void stc_fault_in(const void *inst, uint32_t pou)
+{
+    if (stc_fault_pou == STC_NO_POU) {
+        stc_fault_inst = inst;
+        stc_fault_pou = pou;
     }
 }
 

@@ -38,6 +38,15 @@ extern uint32_t stc_fault_site;
    stc_fault_kind before each program run. */
 void stc_fault(uint32_t kind, uint32_t site);
 
+/* The innermost function block or program instance the pending fault
+   happened in, and its POU (an index of stc_pous; STC_NO_POU until a body
+   of one has seen the fault): every such body that ends because of a
+   fault calls stc_fault_in, and the first call wins. */
+#define STC_NO_POU 0xFFFFFFFFU
+extern const void *stc_fault_inst;
+extern uint32_t stc_fault_pou;
+void stc_fault_in(const void *inst, uint32_t pou);
+
 /* The text of a fault kind, as `stc run` prints it. */
 const char *stc_fault_text(uint32_t kind);
 

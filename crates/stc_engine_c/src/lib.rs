@@ -68,6 +68,10 @@ impl std::error::Error for Error {}
 struct Globals {
     fault_kind: *mut u32,
     fault_site: *mut u32,
+    /// `stc_fault_inst`, `stc_fault_pou`: the innermost instance the
+    /// fault happened in.
+    fault_inst: *mut *const c_void,
+    fault_pou: *mut u32,
     clock: *mut i64,
     steps: *mut u64,
     init_all: unsafe extern "C" fn(),
@@ -124,6 +128,8 @@ impl CEngine {
             let globals = Globals {
                 fault_kind: sym("stc_fault_kind")?.cast(),
                 fault_site: sym("stc_fault_site")?.cast(),
+                fault_inst: sym("stc_fault_inst")?.cast(),
+                fault_pou: sym("stc_fault_pou")?.cast(),
                 clock: sym("stc_clock")?.cast(),
                 steps: sym("stc_steps")?.cast(),
                 init_all: *init,
@@ -144,16 +150,17 @@ impl CEngine {
 
     fn fault(&self, code: u32, site: u32) -> VmFault {
         let kind = fault_kind(code);
-        match self.sites.get(site as usize) {
-            Some((pou, file, line, col)) => VmFault {
-                kind,
-                pou: pou.clone(),
-                file: file.clone(),
-                line: *line,
-                col: *col,
-            },
+        let mut f = match self.sites.get(site as usize) {
+            Some((pou, file, line, col)) => VmFault::at(kind, pou, file, *line, *col),
             None => VmFault::unlocated(kind, "?"),
+        };
+        // SAFETY: the library's own variables (stc_rt.h), read after the
+        // body returned; no other thread runs the library.
+        let (inst, pou) = unsafe { (*self.globals.fault_inst, *self.globals.fault_pou) };
+        if pou != u32::MAX {
+            f.instance_at = self.regions.model_addr(inst as usize).map(|at| (at, pou));
         }
+        f
     }
 }
 

@@ -36,7 +36,7 @@ use stc_syntax::literal::AddrSize;
 use stc_syntax::token::ElemType;
 use stc_values::{BinOp, UnOp, Value};
 
-use crate::{Body, CTX_KIND, CTX_NOW, CTX_SITE, CTX_STEPS};
+use crate::{Body, CTX_INST, CTX_INST_POU, CTX_KIND, CTX_NOW, CTX_SITE, CTX_STEPS, NO_POU};
 
 /// The address space reserved for one engine's code (never committed
 /// beyond what the code uses): PC-relative calls reach 2 GiB.
@@ -545,8 +545,8 @@ struct PlaceAt {
     part: Option<(u32, AddrSize, u32)>,
 }
 
-/// A bounds check of an index: the index (signed 64-bit), its bounds.
-type IndexCheck = (CVal, i64, i64);
+/// An index check: the index, its bounds, and the fault site it reports.
+type IndexCheck = (CVal, i64, i64, u32);
 
 /// Whether a conversion between scalars of this type is the VM's plain
 /// numeric `cvt`.
@@ -684,7 +684,25 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         self.b.switch_to_block(self.ret_block);
         let z = self.b.ins().iconst(I32, 0);
         self.b.ins().return_(&[z]);
+        // A fault from a callee: the innermost function block or program
+        // instance on the way out is where it happened (the first to see
+        // it records itself; a function has no instance of its own).
         self.b.switch_to_block(self.prop_block);
+        let is_instance = pou.kind != PouKind::Function;
+        if is_instance {
+            let recorded = self
+                .b
+                .ins()
+                .load(I32, MemFlags::trusted(), self.ctx, CTX_INST_POU);
+            let none = self.b.ins().icmp_imm(IntCC::Equal, recorded, NO_POU);
+            let record = self.b.create_block();
+            let done = self.b.create_block();
+            self.b.ins().brif(none, record, &[], done, &[]);
+            self.b.switch_to_block(record);
+            self.record_instance();
+            self.b.ins().jump(done, &[]);
+            self.b.switch_to_block(done);
+        }
         let one = self.b.ins().iconst(I32, 1);
         self.b.ins().return_(&[one]);
         self.b.switch_to_block(self.fault_block);
@@ -695,6 +713,14 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         self.b
             .ins()
             .store(MemFlags::trusted(), kp[1], self.ctx, CTX_SITE);
+        if is_instance {
+            self.record_instance();
+        } else {
+            let none = self.b.ins().iconst(I32, NO_POU);
+            self.b
+                .ins()
+                .store(MemFlags::trusted(), none, self.ctx, CTX_INST_POU);
+        }
         let one = self.b.ins().iconst(I32, 1);
         self.b.ins().return_(&[one]);
         self.b.seal_all_blocks();
@@ -703,6 +729,19 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
     }
 
     // ----- helpers ------------------------------------------------------------------
+
+    /// Stores this body's instance and POU as where the pending fault
+    /// happened.
+    fn record_instance(&mut self) {
+        let at = self.b.ins().ireduce(I32, self.this);
+        self.b
+            .ins()
+            .store(MemFlags::trusted(), at, self.ctx, CTX_INST);
+        let p = self.b.ins().iconst(I32, i64::from(self.p.0));
+        self.b
+            .ins()
+            .store(MemFlags::trusted(), p, self.ctx, CTX_INST_POU);
+    }
 
     fn site_of(&mut self, (line, col): (u32, u32)) -> u32 {
         let key = (self.p.0, line, col);
@@ -1082,11 +1121,13 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         Ok(pl)
     }
 
-    fn index_check(&mut self, (i, lo, hi): IndexCheck) {
+    fn index_check(&mut self, (i, lo, hi, site): IndexCheck) {
         let below = self.b.ins().icmp_imm(IntCC::SignedLessThan, i, lo);
         let above = self.b.ins().icmp_imm(IntCC::SignedGreaterThan, i, hi);
         let out = self.b.ins().bor(below, above);
+        let outer = std::mem::replace(&mut self.site, site);
         self.fault_if(out, FaultKind::IndexOutOfBounds);
+        self.site = outer;
     }
 
     /// A place, and the bounds check the VM leaves to the load or store
@@ -1159,28 +1200,34 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                     }
                     let all_const = idx
                         .iter()
-                        .all(|(e, _, _)| matches!(e.kind, ExprKind::Const(_)));
+                        .all(|(e, _, _)| matches!(e.unlocated().kind, ExprKind::Const(_)));
                     if all_const {
                         let mut off: i128 = 0;
                         for (k, (e, lo, _)) in idx.iter().enumerate() {
-                            if let ExprKind::Const(Value::Int(i)) = &e.kind {
+                            if let ExprKind::Const(Value::Int(i)) = &e.unlocated().kind {
                                 off += (i - lo) * mults[k];
                             }
                         }
                         addr = self.b.ins().iadd_imm(addr, off.max(0) as i64);
                     } else {
                         for (k, (e, lo, hi)) in idx.iter().enumerate() {
+                            // A checked index reports its own position.
+                            let (at, e) = e.located();
+                            let site = match at {
+                                Some(at) => self.site_of(at),
+                                None => self.site,
+                            };
                             let i = self.index_value(e)?;
                             let lo = (*lo).clamp(i64::MIN as i128, i64::MAX as i128) as i64;
                             let hi = (*hi).clamp(i64::MIN as i128, i64::MAX as i128) as i64;
                             if fixed {
-                                pending = Some((i, lo, hi));
+                                pending = Some((i, lo, hi, site));
                                 fixed = false;
                             } else {
                                 if let Some(c) = pending.take() {
                                     self.index_check(c);
                                 }
-                                self.index_check((i, lo, hi));
+                                self.index_check((i, lo, hi, site));
                             }
                             let rel = self.b.ins().iadd_imm(i, lo.wrapping_neg());
                             let mult = mults[k].clamp(0, i64::MAX as i128) as i64;
@@ -1412,6 +1459,13 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                 self.ctx,
                 CTX_NOW,
             ))),
+            ExprKind::Located { line, col, expr } => {
+                let outer = self.site;
+                self.site = self.site_of((*line, *col));
+                let r = self.expr(expr);
+                self.site = outer;
+                r
+            }
         }
     }
 

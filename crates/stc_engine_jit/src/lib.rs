@@ -57,12 +57,21 @@ pub(crate) struct Ctx {
     pub fault_kind: u32,
     /// The site of the fault (index into the sites table).
     pub fault_site: u32,
+    /// The innermost function block or program instance the fault
+    /// happened in: its data address and its POU (`NO_POU` while only
+    /// functions have seen the fault).
+    pub fault_inst: u32,
+    pub fault_inst_pou: u32,
 }
 
 pub(crate) const CTX_STEPS: i32 = 0;
 pub(crate) const CTX_NOW: i32 = 8;
 pub(crate) const CTX_KIND: i32 = 16;
 pub(crate) const CTX_SITE: i32 = 20;
+pub(crate) const CTX_INST: i32 = 24;
+pub(crate) const CTX_INST_POU: i32 = 28;
+/// `Ctx::fault_inst_pou` before an instance has seen the fault.
+pub(crate) const NO_POU: i64 = u32::MAX as i64;
 
 /// The body of a POU: `(ctx, memory base, this, frame) -> status` (0, or 1
 /// after a fault recorded in the context).
@@ -105,6 +114,8 @@ impl JitEngine {
                 now: 0,
                 fault_kind: 0,
                 fault_site: 0,
+                fault_inst: 0,
+                fault_inst_pou: NO_POU as u32,
             }),
             _code: out.code,
         })
@@ -112,16 +123,14 @@ impl JitEngine {
 
     fn fault(&self) -> VmFault {
         let kind = FaultKind::from_code(self.ctx.fault_kind).unwrap_or(FaultKind::InvalidCode);
-        match self.sites.get(self.ctx.fault_site as usize) {
-            Some((pou, file, line, col)) => VmFault {
-                kind,
-                pou: pou.clone(),
-                file: file.clone(),
-                line: *line,
-                col: *col,
-            },
+        let mut f = match self.sites.get(self.ctx.fault_site as usize) {
+            Some((pou, file, line, col)) => VmFault::at(kind, pou, file, *line, *col),
             None => VmFault::unlocated(kind, "?"),
+        };
+        if i64::from(self.ctx.fault_inst_pou) != NO_POU {
+            f.instance_at = Some((self.ctx.fault_inst, self.ctx.fault_inst_pou));
         }
+        f
     }
 }
 
@@ -190,5 +199,22 @@ impl Engine for JitEngine {
 
     fn name(&self) -> &'static str {
         "jit"
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The generated code addresses the context by these offsets.
+    #[test]
+    fn the_context_offsets_are_the_struct_fields() {
+        use std::mem::offset_of;
+        assert_eq!(offset_of!(Ctx, steps) as i32, CTX_STEPS);
+        assert_eq!(offset_of!(Ctx, now) as i32, CTX_NOW);
+        assert_eq!(offset_of!(Ctx, fault_kind) as i32, CTX_KIND);
+        assert_eq!(offset_of!(Ctx, fault_site) as i32, CTX_SITE);
+        assert_eq!(offset_of!(Ctx, fault_inst) as i32, CTX_INST);
+        assert_eq!(offset_of!(Ctx, fault_inst_pou) as i32, CTX_INST_POU);
     }
 }

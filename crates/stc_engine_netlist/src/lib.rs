@@ -191,13 +191,11 @@ impl Engine for NetlistEngine {
         self.map = Some(map);
         match result {
             Ok(_) => Ok(1),
-            Err(StepError::Fault(f)) => Err(VmFault {
-                kind: f.kind,
-                pou: f.pou,
-                file: f.file,
-                line: f.line,
-                col: f.col,
-            }),
+            Err(StepError::Fault(f)) => {
+                let mut fault = VmFault::at(f.kind, &f.pou, &f.file, f.line, f.col);
+                fault.instance = Some(f.instance);
+                Err(fault)
+            }
             Err(StepError::Unchecked(i)) => Err(VmFault::unlocated(
                 stc_ir::FaultKind::InvalidCode,
                 &format!("{} (component U{})", self.program, i + 1),

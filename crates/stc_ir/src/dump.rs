@@ -322,6 +322,8 @@ impl Dumper<'_> {
                 format!("{func:?}({}):{t}", a.join(", "))
             }
             ExprKind::CurTime => "CUR_TIME()".into(),
+            // Where a fault is reported: not part of the meaning.
+            ExprKind::Located { expr, .. } => self.expr(expr),
         }
     }
 }

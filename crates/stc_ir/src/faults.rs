@@ -22,7 +22,7 @@
 //! back ends check it on their own (the C back end at loop back-edges, POU
 //! entries and after calls).
 
-use stc_sema::{PouId, VarId};
+use stc_sema::{PouId, TypeTable, VarId};
 use stc_syntax::token::ElemType;
 use stc_values::{is_real, is_time_like, BinOp, Intrinsic, UnOp, Value};
 
@@ -129,7 +129,7 @@ pub fn for_range(before: &[Stmt], s: &Stmt, pou: &Pou) -> Option<(VarId, i128, i
 /// Whether `e`, read where the FOR control variables `ranges` (innermost
 /// last) hold, is a variable whose range lies in `lo..=hi`.
 pub fn index_in_range(e: &Expr, ranges: &[(VarId, i128, i128)], lo: i128, hi: i128) -> bool {
-    let ExprKind::Load(p) = &e.kind else {
+    let ExprKind::Load(p) = &e.unlocated().kind else {
         return false;
     };
     let Root::Var(v) = p.root else {
@@ -216,7 +216,7 @@ impl Direct<'_> {
     fn place(&mut self, p: &Place) -> bool {
         p.proj.iter().any(|pr| match pr {
             Proj::Index(idx) => idx.iter().any(|(e, lo, hi)| {
-                let checked = !matches!(e.kind, ExprKind::Const(Value::Int(_)))
+                let checked = !matches!(e.unlocated().kind, ExprKind::Const(Value::Int(_)))
                     && !index_in_range(e, &self.ranges, *lo, *hi);
                 checked || self.expr(e)
             }),
@@ -243,36 +243,16 @@ impl Direct<'_> {
     }
 
     fn expr(&mut self, e: &Expr) -> bool {
-        let m = self.m;
-        let elem = |t| m.types.scalar(t);
+        if node_may_fault(&self.m.types, e) {
+            return true;
+        }
         match &e.kind {
             ExprKind::Const(_) | ExprKind::CurTime => false,
             ExprKind::Load(p) => self.place(p),
-            ExprKind::Unary(op, x) => unary_faults(*op, elem(x.ty)) || self.expr(x),
-            ExprKind::Binary(op, x, y) => {
-                binary_faults(*op, elem(x.ty), elem(y.ty), elem(e.ty), y)
-                    || self.expr(x)
-                    || self.expr(y)
-            }
-            ExprKind::Convert(x) => {
-                let same = m.types.kind(x.ty) == m.types.kind(e.ty);
-                let faults = match (elem(x.ty), elem(e.ty)) {
-                    _ if same => false,
-                    (Some(f), Some(t)) => stc_values::conversion_may_fault(f, t),
-                    // Aggregates: only a copy of one type is total.
-                    _ => x.ty != e.ty,
-                };
-                faults || self.expr(x)
-            }
-            ExprKind::Check { value, lo, hi } => {
-                let covered = match (&value.kind, elem(value.ty)) {
-                    (ExprKind::Const(Value::Int(v)), _) => lo <= v && v <= hi,
-                    (_, Some(t)) if !is_real(t) => stc_values::int_range(t)
-                        .is_some_and(|(tmin, tmax)| *lo <= tmin && tmax <= *hi),
-                    _ => false,
-                };
-                !covered || self.expr(value)
-            }
+            ExprKind::Unary(_, x) | ExprKind::Convert(x) => self.expr(x),
+            ExprKind::Binary(_, x, y) => self.expr(x) || self.expr(y),
+            ExprKind::Check { value, .. } => self.expr(value),
+            ExprKind::Located { expr, .. } => self.expr(expr),
             ExprKind::CallFn {
                 func,
                 inputs,
@@ -283,11 +263,47 @@ impl Direct<'_> {
                     || inouts.iter().any(|(_, p)| self.place(p))
                     || outputs.iter().any(|o| self.output(*func, o))
             }
-            ExprKind::Intrinsic { func, args } => {
-                let types: Vec<Option<ElemType>> = args.iter().map(|a| elem(a.ty)).collect();
-                intrinsic_faults(*func, &types, elem(e.ty), args)
-                    || args.iter().any(|a| self.expr(a))
+            ExprKind::Intrinsic { args, .. } => args.iter().any(|a| self.expr(a)),
+        }
+    }
+}
+
+/// Whether the operation of `e` itself (not its operands, not the indices
+/// of a place it reads, not a function it calls) can fault: what lowering
+/// gives its own position ([`ExprKind::Located`]).
+pub fn node_may_fault(types: &TypeTable, e: &Expr) -> bool {
+    let elem = |t| types.scalar(t);
+    match &e.kind {
+        ExprKind::Const(_)
+        | ExprKind::CurTime
+        | ExprKind::Load(_)
+        | ExprKind::CallFn { .. }
+        | ExprKind::Located { .. } => false,
+        ExprKind::Unary(op, x) => unary_faults(*op, elem(x.ty)),
+        ExprKind::Binary(op, x, y) => binary_faults(*op, elem(x.ty), elem(y.ty), elem(e.ty), y),
+        ExprKind::Convert(x) => {
+            let same = types.kind(x.ty) == types.kind(e.ty);
+            match (elem(x.ty), elem(e.ty)) {
+                _ if same => false,
+                (Some(f), Some(t)) => stc_values::conversion_may_fault(f, t),
+                // Aggregates: only a copy of one type is total.
+                _ => x.ty != e.ty,
             }
+        }
+        ExprKind::Check { value, lo, hi } => {
+            let value = value.unlocated();
+            let covered = match (&value.kind, elem(value.ty)) {
+                (ExprKind::Const(Value::Int(v)), _) => lo <= v && v <= hi,
+                (_, Some(t)) if !is_real(t) => {
+                    stc_values::int_range(t).is_some_and(|(tmin, tmax)| *lo <= tmin && tmax <= *hi)
+                }
+                _ => false,
+            };
+            !covered
+        }
+        ExprKind::Intrinsic { func, args } => {
+            let arg_types: Vec<Option<ElemType>> = args.iter().map(|a| elem(a.ty)).collect();
+            intrinsic_faults(*func, &arg_types, elem(e.ty), args)
         }
     }
 }
@@ -320,7 +336,7 @@ fn binary_faults(
     let (Some(a), Some(b), Some(res)) = (a, b, res) else {
         return true;
     };
-    let nonzero = matches!(divisor.kind, ExprKind::Const(Value::Int(v)) if v != 0);
+    let nonzero = matches!(divisor.unlocated().kind, ExprKind::Const(Value::Int(v)) if v != 0);
     // A plain integer value (`Value::Int`; not BOOL, a real or a string).
     let string = |t: ElemType| matches!(t, ElemType::String | ElemType::Wstring);
     let int_valued = |t: ElemType| !matches!(t, ElemType::Bool) && !is_real(t) && !string(t);
@@ -371,7 +387,7 @@ fn intrinsic_faults(
         // The selector must name one of the inputs.
         I::Mux => {
             let inputs = args.len() as i128 - 1;
-            match (types.first(), args.first().map(|k| &k.kind)) {
+            match (types.first(), args.first().map(|k| &k.unlocated().kind)) {
                 (_, Some(ExprKind::Const(Value::Int(k)))) => !(0..inputs).contains(k),
                 (Some(Some(t)), _) => {
                     stc_values::int_range(*t).is_none_or(|(lo, hi)| lo < 0 || hi > inputs - 1)

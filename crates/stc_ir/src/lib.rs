@@ -444,6 +444,34 @@ pub enum ExprKind {
     },
     /// The task clock (TIME).
     CurTime,
+    /// `expr`, whose own check (a division, a conversion, a subrange
+    /// check, an array index...) reports this source position (1-based
+    /// line and column: the operator, the call, the index) when it faults,
+    /// rather than its statement's. Lowering puts it around each
+    /// expression that may fault at its own node and around each checked
+    /// array index; for everything but fault reports it is `expr` itself
+    /// (see [`Expr::located`]).
+    Located {
+        line: u32,
+        col: u32,
+        expr: Box<Expr>,
+    },
+}
+
+impl Expr {
+    /// The position a [`ExprKind::Located`] gives, and the expression
+    /// inside it (`self` and `None` for any other expression).
+    pub fn located(&self) -> (Option<(u32, u32)>, &Expr) {
+        match &self.kind {
+            ExprKind::Located { line, col, expr } => (Some((*line, *col)), expr),
+            _ => (None, self),
+        }
+    }
+
+    /// The expression without its [`ExprKind::Located`] wrapper.
+    pub fn unlocated(&self) -> &Expr {
+        self.located().1
+    }
 }
 
 #[derive(Clone, Debug)]

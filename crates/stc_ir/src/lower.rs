@@ -342,6 +342,10 @@ impl<'a> Lowerer<'a> {
                                 hi: *hi,
                             },
                         };
+                        // The value that does not fit is where it faults.
+                        if crate::faults::node_may_fault(&self.a.types, &v) {
+                            v = located(self.line_col(self.ast.expr(*value).span), v);
+                        }
                     }
                 }
                 out.push(at(self, StmtKind::Assign { place, value: v }));
@@ -1080,6 +1084,7 @@ impl<'a> Lowerer<'a> {
             },
             None => self.expr_kind(e, ty),
         };
+        let base = self.locate_fault(e, base);
         match self.a.coercions.get(&e) {
             Some(&t) if t != ty => {
                 // Constants are converted right away.
@@ -1093,13 +1098,43 @@ impl<'a> Lowerer<'a> {
                         }
                     }
                 }
-                Expr {
+                let conv = Expr {
                     kind: ExprKind::Convert(Box::new(base)),
                     ty: t,
-                }
+                };
+                self.locate_fault(e, conv)
             }
             _ => base,
         }
+    }
+
+    /// `x`, lowered from AST expression `e`, in an [`ExprKind::Located`]
+    /// at the position of `e`'s operation when `x` may fault at its own
+    /// node (so the fault names the `/`, the conversion, the call).
+    fn locate_fault(&self, e: ExprId, x: Expr) -> Expr {
+        if !crate::faults::node_may_fault(&self.a.types, &x) {
+            return x;
+        }
+        let at = self.op_position(e);
+        located(at, x)
+    }
+
+    /// Where the operation of `e` is written: a binary operator's own
+    /// token, else the start of the expression (a call's name, a unary
+    /// operator).
+    fn op_position(&self, e: ExprId) -> (u32, u32) {
+        let node = self.ast.expr(e);
+        if let AK::Binary { lhs, rhs, .. } = &node.kind {
+            let (l, r) = (self.ast.expr(*lhs).span, self.ast.expr(*rhs).span);
+            if l.hi <= r.lo {
+                let between = self.sources.slice(Span::new(l.hi, r.lo));
+                let skip = between.len() - between.trim_start().len();
+                if skip < between.len() {
+                    return self.line_col(Span::new(l.hi + skip as u32, r.lo));
+                }
+            }
+        }
+        self.line_col(node.span)
     }
 
     fn expr_kind(&mut self, e: ExprId, ty: TypeId) -> Expr {
@@ -1315,10 +1350,19 @@ impl<'a> Lowerer<'a> {
                     _ => Vec::new(),
                 };
                 let values = self.seq(indices);
+                // A checked index reports its own position.
                 let idx: Vec<(Expr, i128, i128)> = values
                     .into_iter()
+                    .zip(indices.iter())
                     .zip(dims.iter())
-                    .map(|(i, (lo, hi))| (i, *lo, *hi))
+                    .map(|((i, &ie), (lo, hi))| {
+                        let i = if matches!(i.kind, ExprKind::Const(_)) {
+                            i
+                        } else {
+                            located(self.line_col(self.ast.expr(ie).span), i)
+                        };
+                        (i, *lo, *hi)
+                    })
                     .collect();
                 p.proj.push(Proj::Index(idx));
                 p.ty = ty;
@@ -1537,5 +1581,17 @@ PROGRAM P VAR go : BOOL; q : Pair; END_VAR
 END_PROGRAM",
         );
         assert!(out.contains("    Mk$result := P$default"), "{out}");
+    }
+}
+
+/// `x` in an [`ExprKind::Located`] at `(line, col)`.
+fn located((line, col): (u32, u32), x: Expr) -> Expr {
+    Expr {
+        ty: x.ty,
+        kind: ExprKind::Located {
+            line,
+            col,
+            expr: Box::new(x),
+        },
     }
 }

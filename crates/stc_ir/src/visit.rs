@@ -76,6 +76,7 @@ fn expr(e: &Expr, on_expr: &mut dyn FnMut(&Expr), on_place: &mut dyn FnMut(&Plac
         ExprKind::Load(p) => place(p, on_expr, on_place),
         ExprKind::Unary(_, x) | ExprKind::Convert(x) => expr(x, on_expr, on_place),
         ExprKind::Check { value, .. } => expr(value, on_expr, on_place),
+        ExprKind::Located { expr: x, .. } => expr(x, on_expr, on_place),
         ExprKind::Binary(_, x, y) => {
             expr(x, on_expr, on_place);
             expr(y, on_expr, on_place);
@@ -166,6 +167,7 @@ pub fn has_call(e: &Expr) -> bool {
         ExprKind::Load(p) => place_has_call(p),
         ExprKind::Unary(_, x) | ExprKind::Convert(x) => has_call(x),
         ExprKind::Check { value, .. } => has_call(value),
+        ExprKind::Located { expr, .. } => has_call(expr),
         ExprKind::Binary(_, x, y) => has_call(x) || has_call(y),
         ExprKind::Intrinsic { args, .. } => args.iter().any(has_call),
     }

@@ -1240,6 +1240,8 @@ impl<'m> Tr<'m> {
     fn index(&mut self, fr: &mut Frame, loc: Loc, list: &[(Expr, i128, i128)]) -> R<Loc> {
         let mut nets = Vec::with_capacity(list.len());
         for (e, lo, hi) in list {
+            // A checked index reports its own position.
+            let (at, e) = e.located();
             let n = self.scalar_net(fr, e)?;
             // A run-time index is checked against its bounds (a fault
             // site); a constant one was checked by the analyser.
@@ -1247,7 +1249,9 @@ impl<'m> Tr<'m> {
                 Some(_) => n,
                 None => {
                     let t = self.b.ty(n);
-                    self.op(
+                    let outer = self.at;
+                    self.at = at.unwrap_or(outer);
+                    let n = self.op(
                         fr,
                         Kind::Range {
                             lo: *lo,
@@ -1256,7 +1260,9 @@ impl<'m> Tr<'m> {
                         },
                         vec![n],
                         t,
-                    )
+                    );
+                    self.at = outer;
+                    n
                 }
             };
             nets.push(n);
@@ -1558,6 +1564,12 @@ impl<'m> Tr<'m> {
             ExprKind::CurTime => {
                 let t = self.elem(fr, e.ty)?;
                 Val::S(self.b.op(Kind::Clock, vec![], t).0)
+            }
+            ExprKind::Located { line, col, expr } => {
+                let outer = std::mem::replace(&mut self.at, (*line, *col));
+                let v = self.expr(fr, expr);
+                self.at = outer;
+                v?
             }
         })
     }

@@ -224,6 +224,85 @@ pub fn is_member(v: &VarDesc) -> bool {
         )
 }
 
+/// Whether the value of type `ty` at `base` holds the instance of `pou` at
+/// `at`; if so, `out` is extended with the path from the value to it.
+fn find_instance(
+    model: &Model,
+    ty: TypeRef,
+    base: u32,
+    at: u32,
+    pou: u32,
+    out: &mut String,
+    depth: u32,
+) -> bool {
+    // Deeper than any program nests (a hostile table may cycle).
+    if depth > 64 || at < base {
+        return false;
+    }
+    // A member holding `at`: an empty instance still has its address.
+    let holds =
+        |start: u32, t: TypeRef| start <= at && u64::from(at - start) < model.type_size(t).max(1);
+    let member = |out: &mut String, text: String, t: TypeRef, start: u32| {
+        let len = out.len();
+        out.push_str(&text);
+        if find_instance(model, t, start, at, pou, out, depth + 1) {
+            return true;
+        }
+        out.truncate(len);
+        false
+    };
+    match model.types.get(ty as usize) {
+        Some(TypeDesc::Instance { pou: p }) => {
+            if base == at && *p == pou {
+                return true;
+            }
+            let Some(d) = model.pous.get(*p as usize) else {
+                return false;
+            };
+            d.vars.iter().any(|v| {
+                let Some(start) = base.checked_add(v.offset) else {
+                    return false;
+                };
+                !v.in_frame
+                    && !v.is_ref
+                    && holds(start, v.ty)
+                    && member(out, format!(".{}", v.name), v.ty, start)
+            })
+        }
+        Some(TypeDesc::Struct { fields, .. }) => fields.iter().any(|f| {
+            let Some(start) = base.checked_add(f.offset) else {
+                return false;
+            };
+            holds(start, f.ty) && member(out, format!(".{}", f.name), f.ty, start)
+        }),
+        Some(TypeDesc::Array { elem, dims, stride }) if *stride > 0 => {
+            let k = (at - base) / stride;
+            // Row-major: the last index varies fastest.
+            let mut rest = i128::from(k);
+            let mut index = Vec::with_capacity(dims.len());
+            for (lo, hi) in dims.iter().rev() {
+                let n = i128::from(*hi) - i128::from(*lo) + 1;
+                if n <= 0 {
+                    return false;
+                }
+                index.push(i128::from(*lo) + rest % n);
+                rest /= n;
+            }
+            if rest != 0 {
+                return false;
+            }
+            let text: Vec<String> = index.iter().rev().map(|i| i.to_string()).collect();
+            member(
+                out,
+                format!("[{}]", text.join(",")),
+                *elem,
+                base + k * stride,
+            )
+        }
+        _ => false,
+    }
+}
+
 /// Whether a path may name a variable of a POU at all.
 fn is_nameable(v: &VarDesc) -> bool {
     v.kind != VarKind::Hidden
@@ -253,6 +332,34 @@ impl<'a> Scope<'a> {
             };
         }
         Ok(place)
+    }
+
+    /// The path (in this module's syntax, declared spelling) of the
+    /// instance of POU `pou` at data address `at`: the inverse of
+    /// [`Scope::resolve`] for function block and program instances, as a
+    /// fault report names where it happened. Searched in the program
+    /// instances, then the globals (an FB instance declared VAR_GLOBAL).
+    pub fn instance_path(&self, at: u32, pou: u32) -> Option<String> {
+        let roots = self
+            .instances
+            .iter()
+            .filter_map(|i| {
+                let ty = self.model.pous.get(i.pou as usize)?.instance_type;
+                Some((i.name.as_str(), i.offset, ty))
+            })
+            .chain(
+                self.model
+                    .globals
+                    .iter()
+                    .map(|g| (g.name.as_str(), g.offset, g.ty)),
+            );
+        for (name, base, ty) in roots {
+            let mut out = name.to_string();
+            if find_instance(self.model, ty, base, at, pou, &mut out, 0) {
+                return Some(out);
+            }
+        }
+        None
     }
 
     /// The process image slot of a direct address.

@@ -12,6 +12,8 @@ use stc_syntax::literal::{cp1252_decode, format_duration, format_string};
 use stc_syntax::token::ElemType;
 use stc_values::{to_text, Value};
 
+use stc_vm::VmFault;
+
 use crate::value::Shown;
 
 /// The output format of reports.
@@ -50,6 +52,24 @@ impl Renderer {
         self.started = true;
         out.push_str(&r.render(self.format));
         out
+    }
+
+    /// What stdout gets after the last report when the run stops at a
+    /// fault: in JSON one more line, `{"fault":{...}}` (spec/cli.md); in
+    /// the other formats nothing (the fault's text goes to stderr).
+    pub fn fault(&self, f: &VmFault) -> String {
+        if self.format != Format::Json {
+            return String::new();
+        }
+        format!(
+            "{{\"fault\":{{\"kind\":{},\"instance\":{},\"pou\":{},\"file\":{},\"line\":{},\"column\":{},\"details\":{{}}}}}}\n",
+            json_string(f.kind.text()),
+            json_string(f.instance.as_deref().unwrap_or(&f.pou)),
+            json_string(&f.pou),
+            json_string(&f.file),
+            f.line,
+            f.col
+        )
     }
 }
 

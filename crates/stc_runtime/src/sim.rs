@@ -17,7 +17,7 @@
 
 use std::sync::Arc;
 
-use stc_ir::model::{Model, Source, TypeRef, VarKind};
+use stc_ir::model::{Model, ProgramInst, Source, TypeRef, VarKind};
 use stc_ir::FaultKind;
 use stc_syntax::literal::AddrArea;
 use stc_values::{convert, Value};
@@ -357,16 +357,28 @@ impl Simulation {
             for (off, ty, Source::Addr { offset, ty: sty }) in &inst.inputs {
                 let dst = inst.offset.wrapping_add(*off);
                 copy(&self.model, self.engine.as_mut(), *offset, *sty, dst, *ty)
-                    .map_err(|k| connection_fault(&self.model, inst.pou, k))?;
+                    .map_err(|k| connection_fault(&self.model, inst, k))?;
             }
-            let n = self.engine.run_program(inst, now, budget)?;
+            let n = match self.engine.run_program(inst, now, budget) {
+                Ok(n) => n,
+                Err(mut f) => {
+                    if f.instance.is_none() {
+                        f.instance = Some(
+                            f.instance_at
+                                .and_then(|(at, pou)| self.scope().instance_path(at, pou))
+                                .unwrap_or_else(|| inst.name.clone()),
+                        );
+                    }
+                    return Err(f);
+                }
+            };
             if let Some(t) = task {
                 used[t] += n;
             }
             for (off, ty, Source::Addr { offset, ty: dty }) in &inst.outputs {
                 let src = inst.offset.wrapping_add(*off);
                 copy(&self.model, self.engine.as_mut(), src, *ty, *offset, *dty)
-                    .map_err(|k| connection_fault(&self.model, inst.pou, k))?;
+                    .map_err(|k| connection_fault(&self.model, inst, k))?;
             }
         }
         Ok(())
@@ -478,17 +490,19 @@ fn copy(
     Ok(())
 }
 
-fn connection_fault(model: &Model, pou: u32, kind: FaultKind) -> VmFault {
-    VmFault {
+fn connection_fault(model: &Model, inst: &ProgramInst, kind: FaultKind) -> VmFault {
+    let mut f = VmFault::at(
         kind,
-        pou: model
+        model
             .pous
-            .get(pou as usize)
-            .map_or_else(|| "?".into(), |p| p.name.clone()),
-        file: "<configuration>".into(),
-        line: 0,
-        col: 0,
-    }
+            .get(inst.pou as usize)
+            .map_or("?", |p| p.name.as_str()),
+        "<configuration>",
+        0,
+        0,
+    );
+    f.instance = Some(inst.name.clone());
+    f
 }
 
 /// The default watch list: every VAR_OUTPUT of every program instance (in
@@ -844,19 +858,16 @@ mod tests {
     #[test]
     fn a_fault_reports_the_last_completed_cycle() {
         let stimulus = "cycle,g,main.flag\n1,1,FALSE\n2,2,\n3,3,TRUE\n";
-        let fault = VmFault {
-            kind: FaultKind::DivisionByZero,
-            pou: "Main".into(),
-            file: "main.st".into(),
-            line: 7,
-            col: 3,
-        };
         let mut s = sim(watching(&["g"]), Some(stimulus)).unwrap();
         let (out, f) = json_run(&mut s, 5, false);
-        assert_eq!(f.as_ref(), Some(&fault));
+        let fault = f.expect("a fault");
         assert_eq!(
-            f.unwrap().to_string(),
-            "fault: division by zero in Main at main.st:7:3"
+            (fault.kind, fault.instance.as_deref()),
+            (FaultKind::DivisionByZero, Some("Main"))
+        );
+        assert_eq!(
+            fault.to_string(),
+            "fault: division by zero in Main (Main) at main.st:7:3"
         );
         assert_eq!(
             out,

@@ -92,6 +92,16 @@ impl Image {
         u64::from(self.data_size) + self.consts.len() as u64 + u64::from(self.stack_size)
     }
 
+    /// The POU (by index) whose code holds the instruction at `pc`.
+    pub fn pou_at(&self, pc: u32) -> Option<u32> {
+        let i = match self.lines.binary_search_by_key(&pc, |l| l.pc) {
+            Ok(i) => i,
+            Err(0) => return None,
+            Err(i) => i - 1,
+        };
+        Some(self.lines[i].pou)
+    }
+
     /// The source position of an instruction: (POU, file, line, column).
     pub fn position(&self, pc: u32) -> Option<(&str, &str, u32, u32)> {
         let i = match self.lines.binary_search_by_key(&pc, |l| l.pc) {

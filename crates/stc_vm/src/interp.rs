@@ -198,10 +198,28 @@ impl Machine {
                     Trap::Fault(k) => k,
                     Trap::Invalid => FaultKind::InvalidCode,
                 };
-                Err(self.fault_at(kind, cpu.pc as u32))
+                let mut f = self.fault_at(kind, cpu.pc as u32);
+                f.instance_at = innermost_instance(&image, &cpu);
+                Err(f)
             }
         }
     }
+}
+
+/// The innermost function block or program instance running when the
+/// run stopped: (data address, POU). A function runs with its caller's
+/// instance register, so the address is the current one; its POU is the
+/// first one that is not a function, from the current code outwards
+/// through the return addresses.
+fn innermost_instance(image: &Image, cpu: &Cpu) -> Option<(u32, u32)> {
+    let pcs = std::iter::once(cpu.pc).chain(cpu.calls.iter().rev().map(|c| c.0));
+    for pc in pcs {
+        let pou = image.pou_at(u32::try_from(pc).ok()?)?;
+        if image.model.pous.get(pou as usize)?.kind != stc_ir::model::PouKind::Function {
+            return Some((cpu.bases[1], pou));
+        }
+    }
+    None
 }
 
 /// Copies a POU's frame template into a new frame at `fp`.

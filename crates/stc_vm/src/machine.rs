@@ -17,31 +17,50 @@ pub use stc_ir::model::repr::{read_scalar, read_string, write_scalar, write_stri
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct VmFault {
     pub kind: FaultKind,
+    /// The POU whose body was running (a function's own name).
     pub pou: String,
     pub file: String,
     pub line: u32,
     pub col: u32,
+    /// The innermost function block or program instance whose body was
+    /// running (for a fault in a function, the instance that called it),
+    /// as the engine knows it: its data-area address and its POU (by
+    /// index; an instance can share its address with its first member).
+    pub instance_at: Option<(u32, u32)>,
+    /// The path of that instance (`Main.scale_b`): given by an engine that
+    /// knows it, else resolved from `instance_at` by the runtime.
+    pub instance: Option<String>,
 }
 
 impl VmFault {
-    /// A fault with no known source position (`?:0:0`) in `pou`.
-    pub fn unlocated(kind: FaultKind, pou: &str) -> VmFault {
+    /// A fault at a source position in `pou`, its instance not yet known.
+    pub fn at(kind: FaultKind, pou: &str, file: &str, line: u32, col: u32) -> VmFault {
         VmFault {
             kind,
             pou: pou.into(),
-            file: "?".into(),
-            line: 0,
-            col: 0,
+            file: file.into(),
+            line,
+            col,
+            instance_at: None,
+            instance: None,
         }
+    }
+
+    /// A fault with no known source position (`?:0:0`) in `pou`.
+    pub fn unlocated(kind: FaultKind, pou: &str) -> VmFault {
+        VmFault::at(kind, pou, "?", 0, 0)
     }
 }
 
+/// `fault: <kind> in <instance path> (<POU>) at file:line:col`
+/// (spec/cli.md); the POU's name stands for the path when it is unknown.
 impl std::fmt::Display for VmFault {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "fault: {} in {} at {}:{}:{}",
+            "fault: {} in {} ({}) at {}:{}:{}",
             self.kind.text(),
+            self.instance.as_deref().unwrap_or(&self.pou),
             self.pou,
             self.file,
             self.line,
@@ -153,13 +172,7 @@ impl Machine {
 
     pub(crate) fn fault_at(&self, kind: FaultKind, pc: u32) -> VmFault {
         match self.image.position(pc) {
-            Some((pou, file, line, col)) => VmFault {
-                kind,
-                pou: pou.to_string(),
-                file: file.to_string(),
-                line,
-                col,
-            },
+            Some((pou, file, line, col)) => VmFault::at(kind, pou, file, line, col),
             None => VmFault::unlocated(kind, "?"),
         }
     }

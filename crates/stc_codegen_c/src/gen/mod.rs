@@ -497,7 +497,8 @@ impl<'a> Gen<'a> {
         // The watchdog's step after the initial values: a function stopped
         // here still hands back an initialised frame (no uninitialised read
         // in the caller, which leaves at once anyway).
-        self.line(format!("if (stc_step({entry_site}U) != 0U) {{ return; }}"));
+        let bail = self.bail();
+        self.line(format!("if (stc_step({entry_site}U) != 0U) {{ {bail} }}"));
         self.block(&pou.body)?;
         let sig = self.signature(p);
         let mut out = format!("{sig}\n{{\n");
@@ -521,7 +522,8 @@ impl<'a> Gen<'a> {
         if self.may_fault.get(p.index()).copied().unwrap_or(true) {
             self.fault_return();
         } else {
-            self.line("if (stc_watchdog_tripped() != 0U) { return; }".into());
+            let bail = self.bail();
+            self.line(format!("if (stc_watchdog_tripped() != 0U) {{ {bail} }}"));
         }
     }
 
@@ -558,8 +560,20 @@ impl<'a> Gen<'a> {
         n
     }
 
+    /// How a body ends because of a fault: a function block or program
+    /// body first says the fault happened in its instance (unless a
+    /// deeper one said so).
+    fn bail(&self) -> String {
+        if self.f.function {
+            "return;".into()
+        } else {
+            format!("stc_fault_in(self, {}U); return;", self.f.pou.0)
+        }
+    }
+
     fn fault_return(&mut self) {
-        self.line("if (stc_fault_kind != 0U) { return; }".into());
+        let bail = self.bail();
+        self.line(format!("if (stc_fault_kind != 0U) {{ {bail} }}"));
     }
 
     fn block(&mut self, stmts: &[Stmt]) -> Result<(), Error> {
@@ -680,7 +694,8 @@ impl<'a> Gen<'a> {
                 };
                 let site = self.f.site;
                 self.open("for (;;) {".into());
-                self.line(format!("if (stc_step({site}U) != 0U) {{ return; }}"));
+                let bail = self.bail();
+                self.line(format!("if (stc_step({site}U) != 0U) {{ {bail} }}"));
                 self.f.loops.push(label.clone());
                 self.block(body)?;
                 self.f.loops.pop();
@@ -924,6 +939,8 @@ impl<'a> Gen<'a> {
                     let mut checks = Vec::new();
                     for (k, (e, lo, hi)) in idx.iter().enumerate() {
                         let mult: i128 = counts[k + 1..].iter().product();
+                        // A checked index reports its own position.
+                        let (at, e) = e.located();
                         if let ExprKind::Const(Value::Int(i)) = &e.kind {
                             // Checked by the analyser.
                             let pos = (i - lo) * mult;
@@ -947,7 +964,10 @@ impl<'a> Gen<'a> {
                             continue;
                         }
                         let k_t = self.new_temp("uint32_t".into());
-                        let site = self.f.site;
+                        let site = match at {
+                            Some((line, col)) => self.site_of(line, col),
+                            None => self.f.site,
+                        };
                         if known {
                             checks
                                 .push(format!("{k_t} = (uint32_t)((int64_t){i} - INT64_C({lo}));"));
@@ -970,7 +990,7 @@ impl<'a> Gen<'a> {
                             )
                         };
                         checks.push(call);
-                        checks.push("if (stc_fault_kind != 0U) { return; }".into());
+                        checks.push(format!("if (stc_fault_kind != 0U) {{ {} }}", self.bail()));
                         flat.push(if mult == 1 {
                             k_t
                         } else {
@@ -1161,6 +1181,13 @@ impl<'a> Gen<'a> {
                 inouts,
                 outputs,
             } => self.call_fn(*func, inputs, inouts, outputs, e.ty),
+            ExprKind::Located { line, col, expr } => {
+                let outer = self.f.site;
+                self.f.site = self.site_of(*line, *col);
+                let r = self.expr(expr);
+                self.f.site = outer;
+                r
+            }
         }
     }
 
@@ -1416,8 +1443,9 @@ impl Emit for Gen<'_> {
         // The condition is tested where its operands are (in registers),
         // not the fault flag after the fact.
         let site = self.f.site;
+        let bail = self.bail();
         self.line(format!(
-            "if ({cond}) {{ stc_fault({kind}, {site}U); return; }}"
+            "if ({cond}) {{ stc_fault({kind}, {site}U); {bail} }}"
         ));
     }
 

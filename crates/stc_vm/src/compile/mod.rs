@@ -83,8 +83,17 @@ pub fn fault_of_code(c: u32) -> FaultKind {
 #[derive(Clone, Copy, Debug)]
 enum Loc {
     At(Op),
-    Ptr { ptr: Op, off: u32 },
-    Elem { base: Op, idx: Op, desc: u32 },
+    Ptr {
+        ptr: Op,
+        off: u32,
+    },
+    /// `at`: the index's own position, which its check reports.
+    Elem {
+        base: Op,
+        idx: Op,
+        desc: u32,
+        at: Option<(u32, u32)>,
+    },
 }
 
 /// A place: its location, and for `x.%X3` the part selected.
@@ -130,6 +139,8 @@ pub struct Compiler<'a> {
     frames: IdVec<PouId, Option<FrameInfo>>,
     // State of the POU being compiled.
     cur: PouId,
+    /// The source position the code being emitted reports.
+    pos: (u32, u32),
     frame: Frame,
     loops: Vec<LoopCtx>,
     /// The first error met where it could not be returned at once (the
@@ -169,6 +180,7 @@ pub fn compile(m: &Module) -> Result<Image, CompileError> {
         elem_map: FxHashMap::default(),
         frames: m.pous.iter().map(|_| None).collect(),
         cur: PouId(0),
+        pos: (0, 0),
         frame: Frame::default(),
         loops: Vec::new(),
         failed: None,
@@ -323,6 +335,26 @@ impl<'a> Compiler<'a> {
 
     /// Records that the code from here on is statement `s`'s.
     fn mark_line(&mut self, s: &Stmt) {
+        self.pos = (s.line, s.col);
+        self.mark_pos(self.pos);
+    }
+
+    /// Runs `f` with its code at position `at` (when given: an operation's
+    /// own, [`ExprKind::Located`]), then goes back to the position before.
+    fn at_pos<T>(&mut self, at: Option<(u32, u32)>, f: impl FnOnce(&mut Self) -> T) -> T {
+        let Some(at) = at else {
+            return f(self);
+        };
+        let outer = std::mem::replace(&mut self.pos, at);
+        self.mark_pos(at);
+        let r = f(self);
+        self.pos = outer;
+        self.mark_pos(outer);
+        r
+    }
+
+    /// Records that the code from here on is at source position `(line, col)`.
+    fn mark_pos(&mut self, (line, col): (u32, u32)) {
         let file = self
             .files
             .iter()
@@ -332,8 +364,8 @@ impl<'a> Compiler<'a> {
             pc: self.here(),
             pou: self.cur.0,
             file,
-            line: s.line,
-            col: s.col,
+            line,
+            col,
         };
         match self.lines.last_mut() {
             Some(l) if l.pc == entry.pc => *l = entry,
@@ -850,16 +882,23 @@ impl<'a> Compiler<'a> {
             Loc::At(d) => {
                 self.mov(d, v, size);
             }
-            Loc::Elem { base: a, idx, desc } if matches!(size, 1 | 2 | 4 | 8) => {
-                self.emit(width_instr(
-                    size,
-                    [
-                        Instr::StElem1 { a, idx, v, desc },
-                        Instr::StElem2 { a, idx, v, desc },
-                        Instr::StElem4 { a, idx, v, desc },
-                        Instr::StElem8 { a, idx, v, desc },
-                    ],
-                ));
+            Loc::Elem {
+                base: a,
+                idx,
+                desc,
+                at,
+            } if matches!(size, 1 | 2 | 4 | 8) => {
+                self.at_pos(at, |c| {
+                    c.emit(width_instr(
+                        size,
+                        [
+                            Instr::StElem1 { a, idx, v, desc },
+                            Instr::StElem2 { a, idx, v, desc },
+                            Instr::StElem4 { a, idx, v, desc },
+                            Instr::StElem8 { a, idx, v, desc },
+                        ],
+                    ))
+                });
             }
             Loc::Elem { .. } => {
                 let l = self.materialize(loc);
@@ -882,13 +921,20 @@ impl<'a> Compiler<'a> {
     /// A location computed: an array element becomes a pointer.
     fn materialize(&mut self, loc: Loc) -> Loc {
         match loc {
-            Loc::Elem { base, idx, desc } => {
+            Loc::Elem {
+                base,
+                idx,
+                desc,
+                at,
+            } => {
                 let d = self.temp(4);
-                self.emit(Instr::Elem {
-                    d,
-                    a: base,
-                    idx,
-                    desc,
+                self.at_pos(at, |c| {
+                    c.emit(Instr::Elem {
+                        d,
+                        a: base,
+                        idx,
+                        desc,
+                    })
                 });
                 Loc::Ptr { ptr: d, off: 0 }
             }
@@ -914,17 +960,24 @@ impl<'a> Compiler<'a> {
                 });
                 d
             }
-            Loc::Elem { base: a, idx, desc } if matches!(size, 1 | 2 | 4 | 8) => {
+            Loc::Elem {
+                base: a,
+                idx,
+                desc,
+                at,
+            } if matches!(size, 1 | 2 | 4 | 8) => {
                 let d = self.temp(size);
-                self.emit(width_instr(
-                    size,
-                    [
-                        Instr::LdElem1 { d, a, idx, desc },
-                        Instr::LdElem2 { d, a, idx, desc },
-                        Instr::LdElem4 { d, a, idx, desc },
-                        Instr::LdElem8 { d, a, idx, desc },
-                    ],
-                ));
+                self.at_pos(at, |c| {
+                    c.emit(width_instr(
+                        size,
+                        [
+                            Instr::LdElem1 { d, a, idx, desc },
+                            Instr::LdElem2 { d, a, idx, desc },
+                            Instr::LdElem4 { d, a, idx, desc },
+                            Instr::LdElem8 { d, a, idx, desc },
+                        ],
+                    ))
+                });
                 d
             }
             Loc::Elem { .. } => {
@@ -1037,11 +1090,11 @@ impl<'a> Compiler<'a> {
                     }
                     let all_const = idx
                         .iter()
-                        .all(|(e, _, _)| matches!(e.kind, ExprKind::Const(_)));
+                        .all(|(e, _, _)| matches!(e.unlocated().kind, ExprKind::Const(_)));
                     if all_const {
                         let mut off: i128 = 0;
                         for (k, (e, lo, _)) in idx.iter().enumerate() {
-                            if let ExprKind::Const(Value::Int(i)) = &e.kind {
+                            if let ExprKind::Const(Value::Int(i)) = &e.unlocated().kind {
                                 off += (i - lo) * mults[k];
                             }
                         }
@@ -1051,6 +1104,7 @@ impl<'a> Compiler<'a> {
                         // array's place (left lazy when it is the only one),
                         // the others from the pointer so far.
                         for (k, (e, lo, hi)) in idx.iter().enumerate() {
+                            let (at, e) = e.located();
                             let i = self.expr(e)?;
                             let (i, num) = match self.num(e.ty) {
                                 Some(n) if !n.is_float() => (i, n),
@@ -1064,11 +1118,18 @@ impl<'a> Compiler<'a> {
                                 num,
                             });
                             loc = match loc {
-                                Loc::At(base) => Loc::Elem { base, idx: i, desc },
+                                Loc::At(base) => Loc::Elem {
+                                    base,
+                                    idx: i,
+                                    desc,
+                                    at,
+                                },
                                 l => {
                                     let p = self.ptr_of(l);
                                     let d = self.temp(4);
-                                    self.emit(Instr::ElemP { d, p, idx: i, desc });
+                                    self.at_pos(at, |c| {
+                                        c.emit(Instr::ElemP { d, p, idx: i, desc })
+                                    });
                                     Loc::Ptr { ptr: d, off: 0 }
                                 }
                             };
@@ -1292,6 +1353,9 @@ impl<'a> Compiler<'a> {
             }
             ExprKind::CurTime => {
                 self.emit(Instr::CurTime { d });
+            }
+            ExprKind::Located { line, col, expr } => {
+                return self.at_pos(Some((*line, *col)), |c| c.expr_into(expr, d));
             }
         }
         Ok(())
@@ -1746,13 +1810,20 @@ impl<'a> Compiler<'a> {
                 self.emit(Instr::Add32 { d, a: ptr, b: c });
                 d
             }
-            Loc::Elem { base, idx, desc } => {
+            Loc::Elem {
+                base,
+                idx,
+                desc,
+                at,
+            } => {
                 let d = self.temp(4);
-                self.emit(Instr::Elem {
-                    d,
-                    a: base,
-                    idx,
-                    desc,
+                self.at_pos(at, |c| {
+                    c.emit(Instr::Elem {
+                        d,
+                        a: base,
+                        idx,
+                        desc,
+                    })
                 });
                 d
             }
@@ -1833,10 +1904,16 @@ fn offset_loc(l: Loc, off: u32) -> Loc {
     match l {
         Loc::At(a) => Loc::At(a.plus(off)),
         Loc::Ptr { ptr, off: o } => Loc::Ptr { ptr, off: o + off },
-        Loc::Elem { base, idx, desc } => Loc::Elem {
+        Loc::Elem {
+            base,
+            idx,
+            desc,
+            at,
+        } => Loc::Elem {
             base: base.plus(off),
             idx,
             desc,
+            at,
         },
     }
 }
@@ -1934,7 +2011,7 @@ fn quiet(e: &Expr) -> bool {
         ExprKind::Load(p) => p.proj.iter().all(|pr| match pr {
             Proj::Index(idx) => idx
                 .iter()
-                .all(|(e, _, _)| matches!(e.kind, ExprKind::Const(_))),
+                .all(|(e, _, _)| matches!(e.unlocated().kind, ExprKind::Const(_))),
             _ => true,
         }),
         ExprKind::Unary(_, x) => quiet(x),
@@ -2000,6 +2077,7 @@ fn expr_size(e: &Expr) -> usize {
             .sum(),
         ExprKind::Unary(_, x) | ExprKind::Convert(x) => expr_size(x),
         ExprKind::Check { value, .. } => expr_size(value),
+        ExprKind::Located { expr, .. } => expr_size(expr),
         ExprKind::Binary(_, x, y) => expr_size(x) + expr_size(y),
         ExprKind::CallFn { .. } => 100,
         ExprKind::Intrinsic { args, .. } => args.iter().map(expr_size).sum(),

@@ -69,21 +69,6 @@ fn misra(dir: &Path) -> Result<(), String> {
     }
 }
 
-/// The fault lines of a run's stderr (warnings of the analyser are the
-/// VM's alone). A watchdog fault is compared without its position: the VM
-/// counts instructions, the C program loop iterations and calls, so they
-/// run out at different points of the same loop (docs/c-backend.md).
-fn faults(stderr: &str) -> Vec<String> {
-    stderr
-        .lines()
-        .filter(|l| l.starts_with("fault:"))
-        .map(|l| match l.split_once(" at ") {
-            Some((head, _)) if l.starts_with("fault: watchdog") => head.to_string(),
-            _ => l.to_string(),
-        })
-        .collect()
-}
-
 fn check_case(case: &Path, work: &Path) -> Result<bool, String> {
     let Some(mut options) = common::run_options(case)? else {
         return Ok(false);
@@ -134,13 +119,15 @@ fn check_case(case: &Path, work: &Path) -> Result<bool, String> {
             vm.status
         ));
     }
-    if c_out != vm.stdout {
+    if common::comparable_reports(&c_out) != common::comparable_reports(&vm.stdout) {
         problems.push(format!(
             "reports differ:\n--- VM\n{}--- C\n{c_out}",
             vm.stdout
         ));
     }
-    if faults(&vm.stderr) != faults(&c_err) || c_err.contains("runtime error") {
+    if common::fault_lines(&vm.stderr) != common::fault_lines(&c_err)
+        || c_err.contains("runtime error")
+    {
         problems.push(format!(
             "faults differ:\n--- VM\n{}--- C\n{c_err}",
             vm.stderr

@@ -10,20 +10,6 @@ mod common;
 use std::path::Path;
 use std::sync::Mutex;
 
-/// The fault lines of a run's stderr. A watchdog fault is compared without
-/// its position: the VM counts instructions, the JIT loop iterations and
-/// calls (docs/runtime.md).
-fn faults(stderr: &str) -> Vec<String> {
-    stderr
-        .lines()
-        .filter(|l| l.starts_with("fault:"))
-        .map(|l| match l.split_once(" at ") {
-            Some((head, _)) if l.starts_with("fault: watchdog") => head.to_string(),
-            _ => l.to_string(),
-        })
-        .collect()
-}
-
 fn check_case(case: &Path) -> Result<bool, String> {
     let Some(mut options) = common::run_options(case)? else {
         return Ok(false);
@@ -50,13 +36,13 @@ fn check_case(case: &Path) -> Result<bool, String> {
             vm.status, jit.status, jit.stderr
         ));
     }
-    if jit.stdout != vm.stdout {
+    if common::comparable_reports(&jit.stdout) != common::comparable_reports(&vm.stdout) {
         problems.push(format!(
             "reports differ:\n--- VM\n{}--- JIT\n{}",
             vm.stdout, jit.stdout
         ));
     }
-    if faults(&vm.stderr) != faults(&jit.stderr) {
+    if common::fault_lines(&vm.stderr) != common::fault_lines(&jit.stderr) {
         problems.push(format!(
             "faults differ:\n--- VM\n{}--- JIT\n{}",
             vm.stderr, jit.stderr

@@ -263,8 +263,11 @@ fn directives(case: &Path) -> Case {
             if let Some(rest) = line.strip_prefix("// run:") {
                 c.options = shlex::split(rest).unwrap_or_default();
             } else if let Some(rest) = line.strip_prefix("// expect-fault:") {
-                if let Some((k, l)) = rest.rsplit_once('@') {
-                    c.fault = Some((k.trim().to_string(), l.trim().parse().unwrap_or(0)));
+                // `KIND @ LINE[:COL] [in INSTANCE (POU)]`: the kind and line.
+                if let Some((k, l)) = rest.split_once('@') {
+                    let l = l.trim();
+                    let digits = l.find(|c: char| !c.is_ascii_digit()).unwrap_or(l.len());
+                    c.fault = Some((k.trim().to_string(), l[..digits].parse().unwrap_or(0)));
                 }
             } else if let Some(rest) = line.strip_prefix("// expect") {
                 let (cycle, rest) = match rest.strip_prefix(" @") {

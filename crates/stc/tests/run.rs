@@ -88,6 +88,8 @@ struct Directives {
     expects: Vec<Expect>,
     /// `// expect-fault: KIND @ LINE[:COL] [in INSTANCE (POU)]`.
     fault: Option<Fault>,
+    /// `// expect-fault-details: {JSON}`: the fault object's `details`.
+    fault_details: Option<Value>,
     has_run_line: bool,
 }
 
@@ -96,6 +98,7 @@ fn directives(case: &Path) -> Result<Directives, String> {
         options: Vec::new(),
         expects: Vec::new(),
         fault: None,
+        fault_details: None,
         has_run_line: false,
     };
     for file in common::case_files(case) {
@@ -118,6 +121,10 @@ fn directives(case: &Path) -> Result<Directives, String> {
                 let words = shlex::split(rest)
                     .ok_or_else(|| format!("{at}: unbalanced quotes in `// run:`"))?;
                 d.options = common::with_stimulus_beside(words, &dir);
+            } else if let Some(rest) = line.strip_prefix("// expect-fault-details:") {
+                d.fault_details = Some(serde_json::from_str(rest.trim()).map_err(|e| {
+                    format!("{at}: `// expect-fault-details:` takes a JSON object ({e})")
+                })?);
             } else if let Some(rest) = line.strip_prefix("// expect-fault:") {
                 d.fault = Some(parse_expected_fault(rest).ok_or_else(|| {
                     format!(
@@ -258,10 +265,16 @@ fn run_case(case: &Path) -> Result<(), String> {
                     None => problems.push("exit status 3 but no `fault:` line".into()),
                 }
                 // The JSON object, last on stdout, says the same.
-                let object = stdout_lines
+                let last = stdout_lines
                     .pop()
-                    .and_then(|l| serde_json::from_str::<Value>(l).ok())
-                    .and_then(|v| fault_object(&v));
+                    .and_then(|l| serde_json::from_str::<Value>(l).ok());
+                if let Some(want) = &d.fault_details {
+                    let got = last.as_ref().and_then(|v| v.get("fault")?.get("details"));
+                    if got != Some(want) {
+                        problems.push(format!("expected the fault's details {want}, got {got:?}"));
+                    }
+                }
+                let object = last.as_ref().and_then(fault_object);
                 if object.is_none() || object != text {
                     problems.push(format!(
                         "the last stdout line is not the fault's JSON object ({object:?} vs {text:?})"
@@ -510,12 +523,12 @@ fn a_fault_exits_3_with_the_last_completed_cycle() {
         format!(
             "{{\"cycle\":2,\"time\":\"T#10ms\",\"values\":{{\"Main.count\":2}}}}\n\
              {{\"fault\":{{\"kind\":\"division by zero\",\"instance\":\"Main\",\"pou\":\"Main\",\
-             \"file\":\"{f}\",\"line\":15,\"column\":14,\"details\":{{}}}}}}\n"
+             \"file\":\"{f}\",\"line\":15,\"column\":14,\"details\":{{\"divisor\":0}}}}}}\n"
         )
     );
     assert_eq!(
         out.stderr,
-        format!("fault: division by zero in Main (Main) at {f}:15:14\n")
+        format!("fault: division by zero in Main (Main) at {f}:15:14\nnote: the divisor is 0\n")
     );
 }
 

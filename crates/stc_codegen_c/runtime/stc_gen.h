@@ -37,7 +37,8 @@ static inline uint32_t stc_ix_i64(int64_t i, int64_t lo, int64_t hi, uint32_t si
 {
     uint32_t k = 0U;
     if ((i < lo) || (i > hi)) {
-        stc_fault((uint32_t)STC_FAULT_INDEX, site);
+        stc_fault_range((uint32_t)STC_FAULT_INDEX, site, (uint64_t)i, (uint64_t)lo, (uint64_t)hi,
+                        0U);
     } else {
         k = (uint32_t)((uint64_t)i - (uint64_t)lo);
     }
@@ -49,7 +50,8 @@ static inline uint32_t stc_ix_u64(uint64_t i, int64_t lo, int64_t hi, uint32_t s
 {
     uint32_t k = 0U;
     if (i > (uint64_t)INT64_MAX) {
-        stc_fault((uint32_t)STC_FAULT_INDEX, site);
+        stc_fault_range((uint32_t)STC_FAULT_INDEX, site, i, (uint64_t)lo, (uint64_t)hi,
+                        1U /* the value is unsigned */);
     } else {
         k = stc_ix_i64((int64_t)i, lo, hi, site);
     }

@@ -24,8 +24,17 @@ uint32_t stc_fault_site = 0U;
 int64_t stc_clock = 0;
 uint64_t stc_steps = 0U;
 
+/* No instance has seen the pending fault yet (stc_fault_pou). */
+#define STC_NO_POU 0xFFFFFFFFU
+/* stc_fault_range_flags: the range is known. */
+#define STC_RANGE_KNOWN 4U
+
 const void *stc_fault_inst = NULL;
 uint32_t stc_fault_pou = STC_NO_POU;
+uint64_t stc_fault_range_value = 0U;
+uint64_t stc_fault_range_lo = 0U;
+uint64_t stc_fault_range_hi = 0U;
+uint32_t stc_fault_range_flags = 0U;
 
 void stc_fault(uint32_t kind, uint32_t site)
 {
@@ -34,6 +43,19 @@ void stc_fault(uint32_t kind, uint32_t site)
         stc_fault_site = site;
         stc_fault_inst = NULL;
         stc_fault_pou = STC_NO_POU;
+        stc_fault_range_flags = 0U;
+    }
+}
+
+void stc_fault_range(uint32_t kind, uint32_t site, uint64_t value, uint64_t lo, uint64_t hi,
+                     uint32_t flags)
+{
+    if (stc_fault_kind == 0U) {
+        stc_fault(kind, site);
+        stc_fault_range_value = value;
+        stc_fault_range_lo = lo;
+        stc_fault_range_hi = hi;
+        stc_fault_range_flags = flags | STC_RANGE_KNOWN;
     }
 }
 

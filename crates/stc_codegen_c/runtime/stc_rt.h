@@ -39,13 +39,23 @@ extern uint32_t stc_fault_site;
 void stc_fault(uint32_t kind, uint32_t site);
 
 /* The innermost function block or program instance the pending fault
-   happened in, and its POU (an index of stc_pous; STC_NO_POU until a body
+   happened in, and its POU (an index of stc_pous; 0xFFFFFFFF until a body
    of one has seen the fault): every such body that ends because of a
    fault calls stc_fault_in, and the first call wins. */
-#define STC_NO_POU 0xFFFFFFFFU
 extern const void *stc_fault_inst;
 extern uint32_t stc_fault_pou;
 void stc_fault_in(const void *inst, uint32_t pou);
+
+/* The value outside its range of the pending fault (an index, a value
+   outside its subrange) and the range, as 64-bit patterns: bit 0 (1U) of
+   stc_fault_range_flags says the value is unsigned, bit 1 (2U) the
+   bounds, bit 2 (4U, set by stc_fault_range) that there is a value. */
+extern uint64_t stc_fault_range_value;
+extern uint64_t stc_fault_range_lo;
+extern uint64_t stc_fault_range_hi;
+extern uint32_t stc_fault_range_flags;
+void stc_fault_range(uint32_t kind, uint32_t site, uint64_t value, uint64_t lo, uint64_t hi,
+                     uint32_t flags);
 
 /* The text of a fault kind, as `stc run` prints it. */
 const char *stc_fault_text(uint32_t kind);

@@ -161,7 +161,25 @@ fn check(e: &mut dyn Emit, a: &c::Val, lo: i128, hi: i128, dst: &c::Val) {
     if hi < tmax && hi >= tmin {
         conds.push(format!("({v} > {})", c::lit(r, hi)));
     }
-    let fault = format!("stc_fault((uint32_t)STC_FAULT_SUBRANGE, {site}U);");
+    // The value and the bounds go with the fault, as 64-bit patterns.
+    let unsigned = tmin >= 0;
+    let bits = |x: i128| {
+        if unsigned {
+            format!("UINT64_C({})", x.clamp(0, i128::from(u64::MAX)))
+        } else {
+            format!(
+                "(uint64_t)INT64_C({})",
+                x.clamp(i128::from(i64::MIN + 1), i128::from(i64::MAX))
+            )
+        }
+    };
+    // stc_fault_range's flags (stc_rt.h): value and bounds unsigned.
+    let flags = if unsigned { "3U" } else { "0U" };
+    let fault = format!(
+        "stc_fault_range((uint32_t)STC_FAULT_SUBRANGE, {site}U, (uint64_t){v}, {}, {}, {flags});",
+        bits(lo),
+        bits(hi)
+    );
     if never {
         e.stmt(fault);
         e.fault_check();

@@ -72,6 +72,9 @@ struct Globals {
     /// fault happened in.
     fault_inst: *mut *const c_void,
     fault_pou: *mut u32,
+    /// `stc_fault_range_*`: the value outside its range and the range.
+    range: [*mut u64; 3],
+    range_flags: *mut u32,
     clock: *mut i64,
     steps: *mut u64,
     init_all: unsafe extern "C" fn(),
@@ -130,6 +133,12 @@ impl CEngine {
                 fault_site: sym("stc_fault_site")?.cast(),
                 fault_inst: sym("stc_fault_inst")?.cast(),
                 fault_pou: sym("stc_fault_pou")?.cast(),
+                range: [
+                    sym("stc_fault_range_value")?.cast(),
+                    sym("stc_fault_range_lo")?.cast(),
+                    sym("stc_fault_range_hi")?.cast(),
+                ],
+                range_flags: sym("stc_fault_range_flags")?.cast(),
                 clock: sym("stc_clock")?.cast(),
                 steps: sym("stc_steps")?.cast(),
                 init_all: *init,
@@ -157,12 +166,31 @@ impl CEngine {
         // SAFETY: the library's own variables (stc_rt.h), read after the
         // body returned; no other thread runs the library.
         let (inst, pou) = unsafe { (*self.globals.fault_inst, *self.globals.fault_pou) };
+        // SAFETY: as above.
+        let (range, flags) = unsafe { (self.globals.range.map(|p| *p), *self.globals.range_flags) };
+        if flags & RANGE_KNOWN != 0 {
+            let wide = |bits: u64, unsigned: bool| {
+                if unsigned {
+                    i128::from(bits)
+                } else {
+                    i128::from(bits as i64)
+                }
+            };
+            let value = wide(range[0], flags & RANGE_VALUE_UNSIGNED != 0);
+            let bounds = flags & RANGE_BOUNDS_UNSIGNED != 0;
+            f = f.out_of_range(value, wide(range[1], bounds), wide(range[2], bounds));
+        }
         if pou != u32::MAX {
             f.instance_at = self.regions.model_addr(inst as usize).map(|at| (at, pou));
         }
         f
     }
 }
+
+/// `stc_fault_range_flags` (stc_rt.h).
+const RANGE_VALUE_UNSIGNED: u32 = 1;
+const RANGE_BOUNDS_UNSIGNED: u32 = 2;
+const RANGE_KNOWN: u32 = 4;
 
 /// A fault code of `stc_codes.h` (`STC_FAULT_*`: [`FaultKind::code`]).
 fn fault_kind(code: u32) -> FaultKind {

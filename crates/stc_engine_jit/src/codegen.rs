@@ -36,7 +36,10 @@ use stc_syntax::literal::AddrSize;
 use stc_syntax::token::ElemType;
 use stc_values::{BinOp, UnOp, Value};
 
-use crate::{Body, CTX_INST, CTX_INST_POU, CTX_KIND, CTX_NOW, CTX_SITE, CTX_STEPS, NO_POU};
+use crate::{
+    Body, CTX_INST, CTX_INST_POU, CTX_KIND, CTX_NOW, CTX_RANGE, CTX_RANGE_FLAGS, CTX_SITE,
+    CTX_STEPS, NO_POU, RANGE_BOUNDS_UNSIGNED, RANGE_KNOWN, RANGE_VALUE_UNSIGNED,
+};
 
 /// The address space reserved for one engine's code (never committed
 /// beyond what the code uses): PC-relative calls reach 2 GiB.
@@ -546,7 +549,8 @@ struct PlaceAt {
 }
 
 /// An index check: the index, its bounds, and the fault site it reports.
-type IndexCheck = (CVal, i64, i64, u32);
+/// (whether the index is an unsigned 64-bit value).
+type IndexCheck = (CVal, i64, i64, u32, bool);
 
 /// Whether a conversion between scalars of this type is the VM's plain
 /// numeric `cvt`.
@@ -1121,13 +1125,40 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         Ok(pl)
     }
 
-    fn index_check(&mut self, (i, lo, hi, site): IndexCheck) {
+    fn index_check(&mut self, (i, lo, hi, site, unsigned): IndexCheck) {
         let below = self.b.ins().icmp_imm(IntCC::SignedLessThan, i, lo);
         let above = self.b.ins().icmp_imm(IntCC::SignedGreaterThan, i, hi);
         let out = self.b.ins().bor(below, above);
         let outer = std::mem::replace(&mut self.site, site);
-        self.fault_if(out, FaultKind::IndexOutOfBounds);
+        let lo = self.iconst(I64, lo);
+        let hi = self.iconst(I64, hi);
+        let flags = if unsigned { RANGE_VALUE_UNSIGNED } else { 0 };
+        self.range_fault_if(out, FaultKind::IndexOutOfBounds, [i, lo, hi], flags);
         self.site = outer;
+    }
+
+    /// [`Self::fault_if`] for a value outside its range: on the way to
+    /// the fault exit the value and the bounds (64-bit patterns) and
+    /// `flags` (`RANGE_*`) are stored in the context.
+    fn range_fault_if(&mut self, cond: CVal, kind: FaultKind, values: [CVal; 3], flags: i64) {
+        let fail = self.b.create_block();
+        let cont = self.b.create_block();
+        self.b.set_cold_block(fail);
+        self.b.ins().brif(cond, fail, &[], cont, &[]);
+        self.b.switch_to_block(fail);
+        for (k, v) in values.into_iter().enumerate() {
+            self.b
+                .ins()
+                .store(MemFlags::trusted(), v, self.ctx, CTX_RANGE + 8 * k as i32);
+        }
+        let f = self.iconst(I32, flags | RANGE_KNOWN);
+        self.b
+            .ins()
+            .store(MemFlags::trusted(), f, self.ctx, CTX_RANGE_FLAGS);
+        let k = self.iconst(I32, i64::from(kind.code()));
+        let s = self.iconst(I32, i64::from(self.site));
+        self.b.ins().jump(self.fault_block, &[k.into(), s.into()]);
+        self.b.switch_to_block(cont);
     }
 
     /// A place, and the bounds check the VM leaves to the load or store
@@ -1217,17 +1248,21 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                                 Some(at) => self.site_of(at),
                                 None => self.site,
                             };
+                            let unsigned = matches!(
+                                self.scalar(e.ty),
+                                Some(ElemType::Ulint | ElemType::Lword)
+                            );
                             let i = self.index_value(e)?;
                             let lo = (*lo).clamp(i64::MIN as i128, i64::MAX as i128) as i64;
                             let hi = (*hi).clamp(i64::MIN as i128, i64::MAX as i128) as i64;
                             if fixed {
-                                pending = Some((i, lo, hi, site));
+                                pending = Some((i, lo, hi, site, unsigned));
                                 fixed = false;
                             } else {
                                 if let Some(c) = pending.take() {
                                     self.index_check(c);
                                 }
-                                self.index_check((i, lo, hi, site));
+                                self.index_check((i, lo, hi, site, unsigned));
                             }
                             let rel = self.b.ins().iadd_imm(i, lo.wrapping_neg());
                             let mult = mults[k].clamp(0, i64::MAX as i128) as i64;
@@ -1431,7 +1466,23 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                 let below = self.b.ins().icmp(lt, v, lo_v);
                 let above = self.b.ins().icmp(gt, v, hi_v);
                 let out = self.b.ins().bor(below, above);
-                self.fault_if(out, FaultKind::SubrangeViolation);
+                // The value and bounds as 64-bit patterns of their kind.
+                let wide = |g: &mut Self, x: CVal| {
+                    if ct == I64 {
+                        x
+                    } else if signed {
+                        g.b.ins().sextend(I64, x)
+                    } else {
+                        g.b.ins().uextend(I64, x)
+                    }
+                };
+                let (v64, lo64, hi64) = (wide(self, v), wide(self, lo_v), wide(self, hi_v));
+                let flags = if signed {
+                    0
+                } else {
+                    RANGE_VALUE_UNSIGNED | RANGE_BOUNDS_UNSIGNED
+                };
+                self.range_fault_if(out, FaultKind::SubrangeViolation, [v64, lo64, hi64], flags);
                 Ok(V::S(v))
             }
             ExprKind::CallFn {

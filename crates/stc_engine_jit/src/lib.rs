@@ -62,6 +62,11 @@ pub(crate) struct Ctx {
     /// functions have seen the fault).
     pub fault_inst: u32,
     pub fault_inst_pou: u32,
+    /// The value outside its range (an index, a subrange) and the range,
+    /// as 64-bit patterns; `range_flags` says which are unsigned
+    /// (`RANGE_*`), 0: no value.
+    pub range: [u64; 3],
+    pub range_flags: u32,
 }
 
 pub(crate) const CTX_STEPS: i32 = 0;
@@ -70,6 +75,12 @@ pub(crate) const CTX_KIND: i32 = 16;
 pub(crate) const CTX_SITE: i32 = 20;
 pub(crate) const CTX_INST: i32 = 24;
 pub(crate) const CTX_INST_POU: i32 = 28;
+pub(crate) const CTX_RANGE: i32 = 32;
+pub(crate) const CTX_RANGE_FLAGS: i32 = 56;
+/// `Ctx::range_flags`: the value is unsigned, the bounds are, there is one.
+pub(crate) const RANGE_VALUE_UNSIGNED: i64 = 1;
+pub(crate) const RANGE_BOUNDS_UNSIGNED: i64 = 2;
+pub(crate) const RANGE_KNOWN: i64 = 4;
 /// `Ctx::fault_inst_pou` before an instance has seen the fault.
 pub(crate) const NO_POU: i64 = u32::MAX as i64;
 
@@ -116,6 +127,8 @@ impl JitEngine {
                 fault_site: 0,
                 fault_inst: 0,
                 fault_inst_pou: NO_POU as u32,
+                range: [0; 3],
+                range_flags: 0,
             }),
             _code: out.code,
         })
@@ -129,6 +142,23 @@ impl JitEngine {
         };
         if i64::from(self.ctx.fault_inst_pou) != NO_POU {
             f.instance_at = Some((self.ctx.fault_inst, self.ctx.fault_inst_pou));
+        }
+        let flags = i64::from(self.ctx.range_flags);
+        if flags & RANGE_KNOWN != 0 {
+            let wide = |bits: u64, unsigned: bool| {
+                if unsigned {
+                    i128::from(bits)
+                } else {
+                    i128::from(bits as i64)
+                }
+            };
+            let r = self.ctx.range;
+            let bounds = flags & RANGE_BOUNDS_UNSIGNED != 0;
+            f = f.out_of_range(
+                wide(r[0], flags & RANGE_VALUE_UNSIGNED != 0),
+                wide(r[1], bounds),
+                wide(r[2], bounds),
+            );
         }
         f
     }
@@ -171,6 +201,7 @@ impl Engine for JitEngine {
         self.ctx.now = now_ns;
         self.ctx.fault_kind = 0;
         self.ctx.fault_site = 0;
+        self.ctx.range_flags = 0;
         // SAFETY: `body` was compiled from this module for this memory
         // layout: it reads and writes only the memory array (whose length
         // the code was compiled for: `mem` is never resized), at the
@@ -216,5 +247,7 @@ mod tests {
         assert_eq!(offset_of!(Ctx, fault_site) as i32, CTX_SITE);
         assert_eq!(offset_of!(Ctx, fault_inst) as i32, CTX_INST);
         assert_eq!(offset_of!(Ctx, fault_inst_pou) as i32, CTX_INST_POU);
+        assert_eq!(offset_of!(Ctx, range) as i32, CTX_RANGE);
+        assert_eq!(offset_of!(Ctx, range_flags) as i32, CTX_RANGE_FLAGS);
     }
 }

@@ -193,6 +193,10 @@ impl Engine for NetlistEngine {
             Ok(_) => Ok(1),
             Err(StepError::Fault(f)) => {
                 let mut fault = VmFault::at(f.kind, &f.pou, &f.file, f.line, f.col);
+                if let Some(r) = f.range {
+                    let (v, lo, hi) = *r;
+                    fault = fault.out_of_range(v, lo, hi);
+                }
                 fault.instance = Some(f.instance);
                 Err(fault)
             }

@@ -1414,6 +1414,18 @@ fn bin_op(op: ast::BinaryOp) -> BinOp {
     }
 }
 
+/// `x` in an [`ExprKind::Located`] at `(line, col)`.
+fn located((line, col): (u32, u32), x: Expr) -> Expr {
+    Expr {
+        ty: x.ty,
+        kind: ExprKind::Located {
+            line,
+            col,
+            expr: Box::new(x),
+        },
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use stc_diagnostics::SourceMap;
@@ -1581,17 +1593,5 @@ PROGRAM P VAR go : BOOL; q : Pair; END_VAR
 END_PROGRAM",
         );
         assert!(out.contains("    Mk$result := P$default"), "{out}");
-    }
-}
-
-/// `x` in an [`ExprKind::Located`] at `(line, col)`.
-fn located((line, col): (u32, u32), x: Expr) -> Expr {
-    Expr {
-        ty: x.ty,
-        kind: ExprKind::Located {
-            line,
-            col,
-            expr: Box::new(x),
-        },
     }
 }

@@ -22,6 +22,9 @@ pub struct Fault {
     pub file: String,
     pub line: u32,
     pub col: u32,
+    /// For a range check (an index, a subrange): the value and the bounds.
+    /// (Boxed: a fault is rare and the error stays small.)
+    pub range: Option<Box<(i128, i128, i128)>>,
 }
 
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -198,6 +201,14 @@ impl Simulator {
                         .ok()
                         .and_then(FaultKind::from_code)
                         .unwrap_or(FaultKind::InvalidCode);
+                    // The component whose fault output this is.
+                    let range = self.c.components.iter().find_map(|d| match &d.kind {
+                        Kind::Range { lo, hi, .. } if d.outputs.get(1) == Some(&comp.inputs[0]) => {
+                            let v = self.values[d.inputs.first()?.index()].as_int()?;
+                            Some(Box::new((v, *lo, *hi)))
+                        }
+                        _ => None,
+                    });
                     return Err(StepError::Fault(Fault {
                         kind,
                         instance: instance.clone(),
@@ -205,6 +216,7 @@ impl Simulator {
                         file: file.clone(),
                         line: *line,
                         col: *col,
+                        range,
                     }));
                 }
             }

@@ -61,8 +61,14 @@ impl Renderer {
         if self.format != Format::Json {
             return String::new();
         }
+        let details: Vec<String> = f
+            .details
+            .iter()
+            .map(|(k, v)| format!("{}:{v}", json_string(k)))
+            .collect();
+        let details = details.join(",");
         format!(
-            "{{\"fault\":{{\"kind\":{},\"instance\":{},\"pou\":{},\"file\":{},\"line\":{},\"column\":{},\"details\":{{}}}}}}\n",
+            "{{\"fault\":{{\"kind\":{},\"instance\":{},\"pou\":{},\"file\":{},\"line\":{},\"column\":{},\"details\":{{{details}}}}}}}\n",
             json_string(f.kind.text()),
             json_string(f.instance.as_deref().unwrap_or(&f.pou)),
             json_string(&f.pou),

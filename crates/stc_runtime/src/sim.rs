@@ -863,11 +863,11 @@ mod tests {
         let fault = f.expect("a fault");
         assert_eq!(
             (fault.kind, fault.instance.as_deref()),
-            (FaultKind::DivisionByZero, Some("Main"))
+            (FaultKind::DivisionByZero, Some("main"))
         );
         assert_eq!(
             fault.to_string(),
-            "fault: division by zero in Main (Main) at main.st:7:3"
+            "fault: division by zero in main (Main) at main.st:7:3\nnote: the divisor is 0"
         );
         assert_eq!(
             out,

@@ -19,9 +19,12 @@ use crate::machine::{read_scalar, read_string, write_scalar, write_string, Machi
 use crate::num::Num;
 
 /// Why execution stopped early.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 enum Trap {
     Fault(FaultKind),
+    /// A value outside its range (an index, a subrange): the kind, the
+    /// value and the bounds (boxed: faults are rare, the trap stays small).
+    Range(Box<(FaultKind, i128, i128, i128)>),
     /// Memory outside the machine, a bad jump or call: only corrupt bytecode.
     Invalid,
 }
@@ -194,11 +197,15 @@ impl Machine {
         match r {
             Ok(()) => Ok(max_steps - cpu.steps),
             Err(t) => {
-                let kind = match t {
-                    Trap::Fault(k) => k,
-                    Trap::Invalid => FaultKind::InvalidCode,
+                let (kind, range) = match t {
+                    Trap::Fault(k) => (k, None),
+                    Trap::Range(r) => (r.0, Some((r.1, r.2, r.3))),
+                    Trap::Invalid => (FaultKind::InvalidCode, None),
                 };
                 let mut f = self.fault_at(kind, cpu.pc as u32);
+                if let Some((v, lo, hi)) = range {
+                    f = f.out_of_range(v, lo, hi);
+                }
                 f.instance_at = innermost_instance(&image, &cpu);
                 Err(f)
             }
@@ -370,9 +377,32 @@ fn elem_addr(m: &[u8], img: &Image, base: usize, idx: usize, desc: u32) -> Resul
     let d = img.elems.get(desc as usize).ok_or(Trap::Invalid)?;
     let k = read_index(m, idx, d.num)?
         .and_then(|i| i.checked_sub(d.lo))
-        .filter(|k| (*k as u64) < d.count as u64)
-        .ok_or(Trap::Fault(FaultKind::IndexOutOfBounds))?;
-    Ok(base.wrapping_add(k as usize * d.stride as usize))
+        .filter(|k| (*k as u64) < d.count as u64);
+    match k {
+        Some(k) => Ok(base.wrapping_add(k as usize * d.stride as usize)),
+        None => Err(index_fault(m, idx, d)),
+    }
+}
+
+/// The fault of an index outside its array's bounds, with its value.
+#[cold]
+fn index_fault(m: &[u8], idx: usize, d: &crate::image::ElemDesc) -> Trap {
+    let value = match d.num {
+        Num::U64 => ld::<u64>(m, idx).map(i128::from),
+        n => read_num(m, idx, n).map(|(v, _)| v),
+    };
+    match value {
+        Ok(v) => {
+            let lo = i128::from(d.lo);
+            Trap::Range(Box::new((
+                FaultKind::IndexOutOfBounds,
+                v,
+                lo,
+                lo + i128::from(d.count) - 1,
+            )))
+        }
+        Err(t) => t,
+    }
 }
 
 /// MIN or MAX of two scalars of kind `n`: `b` when it compares `want`
@@ -628,7 +658,12 @@ fn run(image: &Image, m: &mut [u8], cpu: &mut Cpu) -> Result<(), Trap> {
                 let (l, _) = tr!(read_num(m, addr(&b, lo), n));
                 let (h, _) = tr!(read_num(m, addr(&b, hi), n));
                 if v < l || v > h {
-                    break Err(Trap::Fault(FaultKind::SubrangeViolation));
+                    break Err(Trap::Range(Box::new((
+                        FaultKind::SubrangeViolation,
+                        v,
+                        l,
+                        h,
+                    ))));
                 }
             }
             I::GetPart {

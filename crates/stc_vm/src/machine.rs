@@ -30,6 +30,10 @@ pub struct VmFault {
     /// The path of that instance (`Main.scale_b`): given by an engine that
     /// knows it, else resolved from `instance_at` by the runtime.
     pub instance: Option<String>,
+    /// The values involved, by name, in order: an index and its array's
+    /// bounds (`index`, `lower`, `upper`), a value and the subrange it
+    /// left (`value`, `lower`, `upper`), the divisor (`divisor`).
+    pub details: Vec<(&'static str, i128)>,
 }
 
 impl VmFault {
@@ -43,6 +47,43 @@ impl VmFault {
             col,
             instance_at: None,
             instance: None,
+            // The divisor of a division by zero is known without asking.
+            details: match kind {
+                FaultKind::DivisionByZero => vec![("divisor", 0)],
+                _ => Vec::new(),
+            },
+        }
+    }
+
+    /// The same fault, of a value outside `lo..=hi` (an index, a
+    /// subrange): its details.
+    pub fn out_of_range(mut self, value: i128, lo: i128, hi: i128) -> VmFault {
+        let name = match self.kind {
+            FaultKind::IndexOutOfBounds => "index",
+            _ => "value",
+        };
+        self.details = vec![(name, value), ("lower", lo), ("upper", hi)];
+        self
+    }
+
+    /// The line after the fault's that says what the values were (empty
+    /// when there are none): `note: index 11 is outside 1..10`.
+    pub fn note(&self) -> String {
+        let get = |k: &str| self.details.iter().find(|d| d.0 == k).map(|d| d.1);
+        match (self.details.first(), get("lower"), get("upper")) {
+            (Some(&(name, v)), Some(lo), Some(hi)) => {
+                format!("note: {name} {v} is outside {lo}..{hi}")
+            }
+            (Some(&("divisor", v)), _, _) => format!("note: the divisor is {v}"),
+            (Some(_), _, _) => {
+                let parts: Vec<String> = self
+                    .details
+                    .iter()
+                    .map(|(k, v)| format!("{k} = {v}"))
+                    .collect();
+                format!("note: {}", parts.join(", "))
+            }
+            (None, _, _) => String::new(),
         }
     }
 
@@ -53,7 +94,9 @@ impl VmFault {
 }
 
 /// `fault: <kind> in <instance path> (<POU>) at file:line:col`
-/// (spec/cli.md); the POU's name stands for the path when it is unknown.
+/// (spec/cli.md), then on a line of its own the values involved
+/// ([`VmFault::note`]); the POU's name stands for the path when it is
+/// unknown.
 impl std::fmt::Display for VmFault {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
@@ -65,7 +108,12 @@ impl std::fmt::Display for VmFault {
             self.file,
             self.line,
             self.col
-        )
+        )?;
+        let note = self.note();
+        if !note.is_empty() {
+            write!(f, "\n{note}")?;
+        }
+        Ok(())
     }
 }
 

@@ -168,29 +168,13 @@ impl CEngine {
         let (inst, pou) = unsafe { (*self.globals.fault_inst, *self.globals.fault_pou) };
         // SAFETY: as above.
         let (range, flags) = unsafe { (self.globals.range.map(|p| *p), *self.globals.range_flags) };
-        if flags & RANGE_KNOWN != 0 {
-            let wide = |bits: u64, unsigned: bool| {
-                if unsigned {
-                    i128::from(bits)
-                } else {
-                    i128::from(bits as i64)
-                }
-            };
-            let value = wide(range[0], flags & RANGE_VALUE_UNSIGNED != 0);
-            let bounds = flags & RANGE_BOUNDS_UNSIGNED != 0;
-            f = f.out_of_range(value, wide(range[1], bounds), wide(range[2], bounds));
-        }
+        f = f.out_of_range_bits(range, flags);
         if pou != u32::MAX {
             f.instance_at = self.regions.model_addr(inst as usize).map(|at| (at, pou));
         }
         f
     }
 }
-
-/// `stc_fault_range_flags` (stc_rt.h).
-const RANGE_VALUE_UNSIGNED: u32 = 1;
-const RANGE_BOUNDS_UNSIGNED: u32 = 2;
-const RANGE_KNOWN: u32 = 4;
 
 /// A fault code of `stc_codes.h` (`STC_FAULT_*`: [`FaultKind::code`]).
 fn fault_kind(code: u32) -> FaultKind {

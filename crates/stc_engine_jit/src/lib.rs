@@ -77,10 +77,10 @@ pub(crate) const CTX_INST: i32 = 24;
 pub(crate) const CTX_INST_POU: i32 = 28;
 pub(crate) const CTX_RANGE: i32 = 32;
 pub(crate) const CTX_RANGE_FLAGS: i32 = 56;
-/// `Ctx::range_flags`: the value is unsigned, the bounds are, there is one.
-pub(crate) const RANGE_VALUE_UNSIGNED: i64 = 1;
-pub(crate) const RANGE_BOUNDS_UNSIGNED: i64 = 2;
-pub(crate) const RANGE_KNOWN: i64 = 4;
+/// `Ctx::range_flags` (`stc_vm::range_flags`).
+pub(crate) const RANGE_VALUE_UNSIGNED: i64 = stc_vm::range_flags::VALUE_UNSIGNED as i64;
+pub(crate) const RANGE_BOUNDS_UNSIGNED: i64 = stc_vm::range_flags::BOUNDS_UNSIGNED as i64;
+pub(crate) const RANGE_KNOWN: i64 = stc_vm::range_flags::KNOWN as i64;
 /// `Ctx::fault_inst_pou` before an instance has seen the fault.
 pub(crate) const NO_POU: i64 = u32::MAX as i64;
 
@@ -143,24 +143,7 @@ impl JitEngine {
         if i64::from(self.ctx.fault_inst_pou) != NO_POU {
             f.instance_at = Some((self.ctx.fault_inst, self.ctx.fault_inst_pou));
         }
-        let flags = i64::from(self.ctx.range_flags);
-        if flags & RANGE_KNOWN != 0 {
-            let wide = |bits: u64, unsigned: bool| {
-                if unsigned {
-                    i128::from(bits)
-                } else {
-                    i128::from(bits as i64)
-                }
-            };
-            let r = self.ctx.range;
-            let bounds = flags & RANGE_BOUNDS_UNSIGNED != 0;
-            f = f.out_of_range(
-                wide(r[0], flags & RANGE_VALUE_UNSIGNED != 0),
-                wide(r[1], bounds),
-                wide(r[2], bounds),
-            );
-        }
-        f
+        f.out_of_range_bits(self.ctx.range, self.ctx.range_flags)
     }
 }
 

@@ -14,4 +14,4 @@ pub mod verify;
 
 pub use compile::{compile, CompileError};
 pub use image::Image;
-pub use machine::{Machine, VmFault};
+pub use machine::{range_flags, Machine, VmFault};

@@ -66,6 +66,29 @@ impl VmFault {
         self
     }
 
+    /// [`VmFault::out_of_range`] from the 64-bit patterns a native engine
+    /// hands over (C's `stc_fault_range_*`, the JIT's context): the value
+    /// and the bounds, and `flags` of [`range_flags`] (nothing when its
+    /// `KNOWN` bit is clear).
+    pub fn out_of_range_bits(self, [value, lo, hi]: [u64; 3], flags: u32) -> VmFault {
+        if flags & range_flags::KNOWN == 0 {
+            return self;
+        }
+        let wide = |bits: u64, unsigned: bool| {
+            if unsigned {
+                i128::from(bits)
+            } else {
+                i128::from(bits as i64)
+            }
+        };
+        let bounds = flags & range_flags::BOUNDS_UNSIGNED != 0;
+        self.out_of_range(
+            wide(value, flags & range_flags::VALUE_UNSIGNED != 0),
+            wide(lo, bounds),
+            wide(hi, bounds),
+        )
+    }
+
     /// The line after the fault's that says what the values were (empty
     /// when there are none): `note: index 11 is outside 1..10`.
     pub fn note(&self) -> String {
@@ -91,6 +114,18 @@ impl VmFault {
     pub fn unlocated(kind: FaultKind, pou: &str) -> VmFault {
         VmFault::at(kind, pou, "?", 0, 0)
     }
+}
+
+/// The flags of [`VmFault::out_of_range_bits`], as the native engines
+/// write them (the C runtime's `stc_fault_range_flags`, stc_rt.h, uses
+/// the same bits as literals).
+pub mod range_flags {
+    /// The value is an unsigned 64-bit pattern.
+    pub const VALUE_UNSIGNED: u32 = 1;
+    /// The bounds are.
+    pub const BOUNDS_UNSIGNED: u32 = 2;
+    /// There is a value at all.
+    pub const KNOWN: u32 = 4;
 }
 
 /// `fault: <kind> in <instance path> (<POU>) at file:line:col`

@@ -22,6 +22,7 @@ mod expr;
 mod flow;
 pub mod idx;
 mod il;
+mod sfc;
 pub mod prelude;
 mod stmt;
 #[cfg(test)]

@@ -40,6 +40,19 @@ pub struct ChartNames<'a> {
 }
 
 impl<'a> ChartNames<'a> {
+    /// The chart's names, leaving out steps and named transitions with a
+    /// body whose names are variables of the POU (`declared`: the analyser
+    /// reports them).
+    pub fn without(sfc: &'a SfcBody, declared: &[Symbol]) -> ChartNames<'a> {
+        let mut names = ChartNames::of(sfc);
+        names.steps.retain(|s| !declared.contains(&s.name.sym));
+        names.transitions.retain(|t| {
+            !matches!(t.cond, TransitionCond::Body(_))
+                || t.name.is_none_or(|n| !declared.contains(&n.sym))
+        });
+        names
+    }
+
     pub fn of(sfc: &'a SfcBody) -> ChartNames<'a> {
         let mut names = ChartNames {
             steps: Vec::new(),
@@ -266,8 +279,8 @@ pub fn lower(
     if kind == PouKind::Function {
         return (Vec::new(), Vec::new());
     }
-    let chart = ChartNames::of(sfc);
     let declared = declared(var_blocks);
+    let chart = ChartNames::without(sfc, &declared);
     let span = sfc.span;
     let mut g = Gen { ast, interner };
     let mut step_decls = Vec::new();

@@ -163,6 +163,10 @@ impl Parser<'_> {
             let (chart, meaning) = self.sfc_body(kind, &mut var_blocks);
             sfc = Some(chart);
             body = meaning;
+            if kind == PouKind::Function {
+                // E1201: the chart has no meaning; say nothing more.
+                self.pou_partial = true;
+            }
         } else if self.at_il_body() {
             il = Some(self.il_body());
         } else {

@@ -1,0 +1,292 @@
+//! The rules of a Sequential Function Chart (docs/sfc.md, E1201-E1209,
+//! W1201-W1202).
+//!
+//! The chart's meaning is ordinary ST (`stc_syntax::sfc`), checked by the
+//! rest of the analyser; here are the rules about the chart as written:
+//! its names, its initial step, which steps can be reached. What is wrong
+//! here was left out of the meaning, so it is reported once.
+
+use stc_diagnostics::{Code, Diagnostic};
+use stc_syntax::ast::{
+    ExprKind, Literal, LitValue, Pou, PouKind, SfcBody, SfcElement, Stmt, StmtKind,
+    TransitionCond,
+};
+use stc_syntax::sfc::{declared, ChartNames};
+use stc_syntax::Symbol;
+
+use crate::analyzer::Sema;
+
+impl<'a> Sema<'a> {
+    pub(crate) fn check_sfc(&mut self, pou: &'a Pou, sfc: &'a SfcBody) {
+        if pou.kind == PouKind::Function {
+            let d = Diagnostic::new(
+                Code::E1201,
+                sfc.span.shrink_to_lo(),
+                "a Sequential Function Chart cannot be the body of a FUNCTION",
+            )
+            .with_label("a chart keeps state between calls")
+            .with_help("make the POU a FUNCTION_BLOCK or a PROGRAM");
+            self.emit(d);
+            return;
+        }
+        let chart = ChartNames::of(sfc);
+        let vars = declared(&pou.var_blocks[..pou.var_blocks.len() - sfc.generated_blocks]);
+
+        // Names declared twice (steps, actions, named transitions).
+        let mut seen: Vec<(Symbol, &'static str)> = Vec::new();
+        for e in &sfc.elements {
+            let (name, what) = match e {
+                SfcElement::Step(s) => (Some(s.name), "step"),
+                SfcElement::Action(a) => (Some(a.name), "action"),
+                SfcElement::Transition(t) => (t.name, "transition"),
+            };
+            let Some(name) = name else { continue };
+            let named_var = match e {
+                SfcElement::Step(_) => true,
+                SfcElement::Transition(t) => matches!(t.cond, TransitionCond::Body(_)),
+                SfcElement::Action(_) => false,
+            };
+            if named_var && vars.contains(&name.sym) {
+                let shown = self.spelled(name.sym, name.span);
+                self.emit(
+                    Diagnostic::new(
+                        Code::E1206,
+                        name.span,
+                        format!("`{shown}` is already a variable of this POU"),
+                    )
+                    .with_label(format!("declared again, as a {what}")),
+                );
+                continue;
+            }
+            if let Some(&(_, first)) = seen.iter().find(|(s, _)| *s == name.sym) {
+                let shown = self.spelled(name.sym, name.span);
+                self.emit(
+                    Diagnostic::new(
+                        Code::E1206,
+                        name.span,
+                        format!("`{shown}` is already the name of a {first} of this chart"),
+                    )
+                    .with_label(format!("second declaration, as a {what}")),
+                );
+            } else {
+                seen.push((name.sym, what));
+            }
+        }
+
+        // The initial step.
+        let initial: Vec<_> = chart.steps.iter().filter(|s| s.initial).collect();
+        if initial.is_empty() && !chart.steps.is_empty() {
+            let first = chart.steps[0];
+            self.emit(
+                Diagnostic::new(
+                    Code::E1202,
+                    first.name.span,
+                    "the chart has no initial step",
+                )
+                .with_label("no INITIAL_STEP in this chart")
+                .with_help("declare the step the chart starts in with INITIAL_STEP"),
+            );
+        }
+        for extra in initial.iter().skip(1) {
+            let d = Diagnostic::new(
+                Code::E1203,
+                extra.name.span,
+                "a chart has exactly one initial step",
+            )
+            .with_label("second INITIAL_STEP")
+            .with_secondary(initial[0].name.span, "the first one");
+            self.emit(d);
+        }
+
+        // Transitions.
+        for t in &chart.transitions {
+            for n in t.from.iter().chain(&t.to) {
+                if chart.step(n.sym).is_none() {
+                    let shown = self.spelled(n.sym, n.span);
+                    self.emit(
+                        Diagnostic::new(
+                            Code::E1204,
+                            n.span,
+                            format!("`{shown}` is not a step of this chart"),
+                        )
+                        .with_label("unknown step"),
+                    );
+                }
+            }
+            if let Some(p) = t.priority {
+                let ok = matches!(
+                    &self.ast.expr(p).kind,
+                    ExprKind::Literal(Literal {
+                        value: LitValue::Int {
+                            negative: false,
+                            ..
+                        },
+                        prefix: None,
+                    })
+                );
+                if !ok {
+                    self.emit(
+                        Diagnostic::new(
+                            Code::E1207,
+                            self.ast.expr(p).span,
+                            "a transition PRIORITY must be a non-negative integer literal",
+                        )
+                        .with_label("not an integer literal"),
+                    );
+                }
+            }
+            if matches!(t.cond, TransitionCond::Body(_)) && t.name.is_none() {
+                self.emit(
+                    Diagnostic::new(
+                        Code::E1209,
+                        t.span.shrink_to_lo(),
+                        "a transition with a body of statements needs a name",
+                    )
+                    .with_label("the body gives the condition by assigning the transition's name")
+                    .with_help("write `TRANSITION name FROM ...`, or the condition as `:= expression;`"),
+                );
+            }
+        }
+
+        // Associations.
+        let mut used: Vec<Symbol> = Vec::new();
+        for s in &chart.steps {
+            for a in &s.assocs {
+                used.push(a.action.sym);
+                if chart.action(a.action.sym).is_none() && !vars.contains(&a.action.sym) {
+                    let shown = self.spelled(a.action.sym, a.action.span);
+                    self.emit(
+                        Diagnostic::new(
+                            Code::E1205,
+                            a.action.span,
+                            format!("`{shown}` is neither an action of this chart nor a variable"),
+                        )
+                        .with_label("undefined action")
+                        .with_help(format!(
+                            "declare `ACTION {shown} : ... END_ACTION`, or a BOOL variable"
+                        )),
+                    );
+                }
+            }
+        }
+        for a in &chart.actions {
+            if !used.contains(&a.name.sym) {
+                let shown = self.spelled(a.name.sym, a.name.span);
+                self.emit(
+                    Diagnostic::new(
+                        Code::W1202,
+                        a.name.span,
+                        format!("the action `{shown}` is associated with no step"),
+                    )
+                    .with_label("never runs"),
+                );
+            }
+        }
+
+        // Step flags are read-only.
+        let steps: Vec<Symbol> = chart.steps.iter().map(|s| s.name.sym).collect();
+        for e in &sfc.elements {
+            match e {
+                SfcElement::Action(a) => self.step_writes(&a.body, &steps),
+                SfcElement::Transition(t) => {
+                    if let TransitionCond::Body(b) = &t.cond {
+                        self.step_writes(b, &steps);
+                    }
+                }
+                SfcElement::Step(_) => {}
+            }
+        }
+
+        // Reachability from the initial step.
+        if initial.len() == 1 {
+            let mut reached: Vec<Symbol> = vec![initial[0].name.sym];
+            loop {
+                let before = reached.len();
+                for t in &chart.transitions {
+                    if chart.transition_valid(t) && t.from.iter().all(|f| reached.contains(&f.sym))
+                    {
+                        for n in &t.to {
+                            if !reached.contains(&n.sym) {
+                                reached.push(n.sym);
+                            }
+                        }
+                    }
+                }
+                if reached.len() == before {
+                    break;
+                }
+            }
+            for s in &chart.steps {
+                if !reached.contains(&s.name.sym) {
+                    let shown = self.spelled(s.name.sym, s.name.span);
+                    self.emit(
+                        Diagnostic::new(
+                            Code::W1201,
+                            s.name.span,
+                            format!("the step `{shown}` can never become active"),
+                        )
+                        .with_label("no transition leads here from the initial step"),
+                    );
+                }
+            }
+        }
+    }
+
+    /// E1208 for every assignment to `step.X` or `step.T` in `list`.
+    fn step_writes(&mut self, list: &[Stmt], steps: &[Symbol]) {
+        for s in list {
+            match &s.kind {
+                StmtKind::Assign { target, .. } => {
+                    let mut e = *target;
+                    loop {
+                        match &self.ast.expr(e).kind {
+                            ExprKind::Member { base, .. } | ExprKind::Paren(base) => e = *base,
+                            ExprKind::Index { base, .. } => e = *base,
+                            ExprKind::PartialAccess { base, .. } => e = *base,
+                            _ => break,
+                        }
+                    }
+                    if let ExprKind::Name(n) = &self.ast.expr(e).kind {
+                        if steps.contains(&n.sym) {
+                            let shown = self.spelled(n.sym, n.span);
+                            self.emit(
+                                Diagnostic::new(
+                                    Code::E1208,
+                                    self.ast.expr(*target).span,
+                                    format!("the flags of the step `{shown}` cannot be written"),
+                                )
+                                .with_label("step flags are read-only")
+                                .with_note("the chart's evolution rules set `.X` and `.T`"),
+                            );
+                        }
+                    }
+                }
+                StmtKind::If {
+                    branches,
+                    else_body,
+                } => {
+                    for b in branches {
+                        self.step_writes(&b.body, steps);
+                    }
+                    if let Some(b) = else_body {
+                        self.step_writes(b, steps);
+                    }
+                }
+                StmtKind::Case {
+                    arms, else_body, ..
+                } => {
+                    for a in arms {
+                        self.step_writes(&a.body, steps);
+                    }
+                    if let Some(b) = else_body {
+                        self.step_writes(b, steps);
+                    }
+                }
+                StmtKind::For { body, .. }
+                | StmtKind::While { body, .. }
+                | StmtKind::Repeat { body, .. } => self.step_writes(body, steps),
+                _ => {}
+            }
+        }
+    }
+}

@@ -124,8 +124,9 @@ thousands of nested parentheses). Split the expression with intermediate
 variables.";
     E0030 Error "not supported yet"
 "The construct is valid in some IEC 61131-3 dialect but stc does not support
-it yet: Sequential Function Charts, the
-object-oriented extensions (METHOD, PROPERTY, ACTION, INTERFACE, EXTENDS,
+it yet: the
+object-oriented extensions (METHOD, PROPERTY, ACTION outside a Sequential
+Function Chart, chart elements after ST statements, INTERFACE, EXTENDS,
 IMPLEMENTS), POINTER TO, REFERENCE TO, REF_TO and the dereference `^`,
 `REF=`, UNION types, VAR_STAT/VAR_INST sections, variable-length arrays
 (`ARRAY[*]`, `ARRAY[..]`), the `__` operators of CODESYS and TwinCAT

@@ -22,8 +22,8 @@ mod expr;
 mod flow;
 pub mod idx;
 mod il;
-mod sfc;
 pub mod prelude;
+mod sfc;
 mod stmt;
 #[cfg(test)]
 mod tests;

@@ -8,16 +8,17 @@
 
 use stc_diagnostics::{Code, Diagnostic};
 use stc_syntax::ast::{
-    ExprKind, Literal, LitValue, Pou, PouKind, SfcBody, SfcElement, Stmt, StmtKind,
-    TransitionCond,
+    ExprKind, LitValue, Literal, Pou, PouKind, SfcBody, SfcElement, Stmt, StmtKind, TransitionCond,
 };
 use stc_syntax::sfc::{declared, ChartNames};
 use stc_syntax::Symbol;
 
-use crate::analyzer::Sema;
+use crate::analyzer::{Scope, Sema};
+use crate::types::TypeId;
+use crate::PouId;
 
 impl<'a> Sema<'a> {
-    pub(crate) fn check_sfc(&mut self, pou: &'a Pou, sfc: &'a SfcBody) {
+    pub(crate) fn check_sfc(&mut self, p: PouId, pou: &'a Pou, sfc: &'a SfcBody) {
         if pou.kind == PouKind::Function {
             let d = Diagnostic::new(
                 Code::E1201,
@@ -99,9 +100,11 @@ impl<'a> Sema<'a> {
         }
 
         // Transitions.
+        let mut unknown_step = false;
         for t in &chart.transitions {
             for n in t.from.iter().chain(&t.to) {
                 if chart.step(n.sym).is_none() {
+                    unknown_step = true;
                     let shown = self.spelled(n.sym, n.span);
                     self.emit(
                         Diagnostic::new(
@@ -113,9 +116,9 @@ impl<'a> Sema<'a> {
                     );
                 }
             }
-            if let Some(p) = t.priority {
+            if let Some(prio) = t.priority {
                 let ok = matches!(
-                    &self.ast.expr(p).kind,
+                    &self.ast.expr(prio).kind,
                     ExprKind::Literal(Literal {
                         value: LitValue::Int {
                             negative: false,
@@ -125,10 +128,12 @@ impl<'a> Sema<'a> {
                     })
                 );
                 if !ok {
+                    // Its names still count as used.
+                    self.check_expr(prio, Some(TypeId::ERROR), Scope::Pou(p));
                     self.emit(
                         Diagnostic::new(
                             Code::E1207,
-                            self.ast.expr(p).span,
+                            self.ast.expr(prio).span,
                             "a transition PRIORITY must be a non-negative integer literal",
                         )
                         .with_label("not an integer literal"),
@@ -143,7 +148,9 @@ impl<'a> Sema<'a> {
                         "a transition with a body of statements needs a name",
                     )
                     .with_label("the body gives the condition by assigning the transition's name")
-                    .with_help("write `TRANSITION name FROM ...`, or the condition as `:= expression;`"),
+                    .with_help(
+                        "write `TRANSITION name FROM ...`, or the condition as `:= expression;`",
+                    ),
                 );
             }
         }
@@ -153,6 +160,24 @@ impl<'a> Sema<'a> {
         for s in &chart.steps {
             for a in &s.assocs {
                 used.push(a.action.sym);
+                for i in &a.indicators {
+                    match self.pous[p.0 as usize].lookup(i.sym) {
+                        Some(v) => {
+                            self.used.insert((p, v));
+                        }
+                        None => {
+                            let shown = self.spelled(i.sym, i.span);
+                            self.emit(
+                                Diagnostic::new(
+                                    Code::E0101,
+                                    i.span,
+                                    format!("undeclared variable `{shown}`"),
+                                )
+                                .with_label("not declared in this POU"),
+                            );
+                        }
+                    }
+                }
                 if chart.action(a.action.sym).is_none() && !vars.contains(&a.action.sym) {
                     let shown = self.spelled(a.action.sym, a.action.span);
                     self.emit(
@@ -170,7 +195,7 @@ impl<'a> Sema<'a> {
             }
         }
         for a in &chart.actions {
-            if !used.contains(&a.name.sym) {
+            if !used.contains(&a.name.sym) && !pou.partial {
                 let shown = self.spelled(a.name.sym, a.name.span);
                 self.emit(
                     Diagnostic::new(
@@ -197,8 +222,9 @@ impl<'a> Sema<'a> {
             }
         }
 
-        // Reachability from the initial step.
-        if initial.len() == 1 {
+        // Reachability from the initial step (of a chart whose transitions
+        // are all known).
+        if initial.len() == 1 && !unknown_step && !pou.partial {
             let mut reached: Vec<Symbol> = vec![initial[0].name.sym];
             loop {
                 let before = reached.len();
@@ -217,7 +243,7 @@ impl<'a> Sema<'a> {
                 }
             }
             for s in &chart.steps {
-                if !reached.contains(&s.name.sym) {
+                if !reached.contains(&s.name.sym) && !vars.contains(&s.name.sym) {
                     let shown = self.spelled(s.name.sym, s.name.span);
                     self.emit(
                         Diagnostic::new(

@@ -21,7 +21,7 @@ impl<'a> Sema<'a> {
             self.il_body(p, il);
         }
         if let Some(sfc) = &pou.sfc {
-            self.check_sfc(pou, sfc);
+            self.check_sfc(p, pou, sfc);
         }
         self.pou_warnings(p, pou);
     }

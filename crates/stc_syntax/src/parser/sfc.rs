@@ -90,6 +90,7 @@ impl Parser<'_> {
         var_blocks: &mut Vec<VarBlock>,
     ) -> (SfcBody, Vec<Stmt>) {
         let start = self.tok().span();
+        let errors = self.diags.len();
         let mut elements = Vec::new();
         while !self.aborted {
             if self.at_step() {
@@ -108,6 +109,10 @@ impl Parser<'_> {
             } else {
                 break;
             }
+        }
+        if self.diags.len() > errors {
+            // What uses what is not known: no warnings that depend on it.
+            self.pou_partial = true;
         }
         let span = start.to(self.prev().span());
         let mut sfc = SfcBody {
@@ -211,7 +216,11 @@ impl Parser<'_> {
             self.bump();
             qualifier = Some((q, t.span()));
             if q.timed() {
-                if !self.expect(TokenKind::Comma) {
+                if !self.eat(TokenKind::Comma) {
+                    self.expected(&format!(
+                        "`,` and the duration of the qualifier {}",
+                        q.name()
+                    ));
                     return None;
                 }
                 duration = Some(self.expr());

@@ -72,6 +72,14 @@ END_FUNCTION_BLOCK
    more in the cycle after Q falls (the final scan), and once at the rising
    edge of P1 and the falling edge of P0. R resets what S, SD, DS and SL
    stored. *)
+TYPE
+    (* The flags of a step of a chart: active, and for how long. *)
+    SFC_STEP : STRUCT
+        X : BOOL;
+        T : TIME;
+    END_STRUCT;
+END_TYPE
+
 FUNCTION_BLOCK SFC_ACTION_CONTROL
 VAR_INPUT
     N, R, S, L, D, P, P0, P1, SD, DS, SL : BOOL;

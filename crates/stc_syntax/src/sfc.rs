@@ -7,8 +7,9 @@
 //! it like any body, and no back end knows charts exist.
 //!
 //! The state, in the POU's instance:
-//! - a variable per step, named like the step, `STRUCT X : BOOL; T : TIME;
-//!   END_STRUCT` (the step flag and the step time, `S1.X`, `S1.T`); an
+//! - a variable per step, named like the step, of the prelude's structure
+//!   `SFC_STEP` (`X : BOOL; T : TIME`: the step flag and the step time,
+//!   `S1.X`, `S1.T`); an
 //!   output of a FUNCTION_BLOCK, so `inst.S1.X` is readable from outside;
 //! - `SFC$$last` (the clock at the last cycle) and `SFC$$run` (a cycle ran);
 //! - per transition its condition value (`SFC$$c<i>`, or the transition's
@@ -30,6 +31,9 @@ use crate::token::ElemType;
 
 /// The prelude function block that implements the action qualifiers.
 pub const ACTION_CONTROL: &str = "SFC_ACTION_CONTROL";
+
+/// The prelude structure of a step's flags, `X : BOOL; T : TIME`.
+pub const STEP_TYPE: &str = "SFC_STEP";
 
 /// The steps, actions and transitions of a chart, first declaration of each
 /// name only.
@@ -290,11 +294,7 @@ pub fn lower(
     // The steps.
     for s in &chart.steps {
         let x = g.ident("X", s.name.span);
-        let t = g.ident("T", s.name.span);
-        let members = vec![
-            g.decl(x, TypeSpecKind::Elementary(ElemType::Bool), None),
-            g.decl(t, TypeSpecKind::Elementary(ElemType::Time), None),
-        ];
+        let ty = g.ident(STEP_TYPE, s.name.span);
         let init = if s.initial {
             let value = g.bool(true, s.name.span);
             Some(Init {
@@ -310,7 +310,7 @@ pub fn lower(
         } else {
             None
         };
-        step_decls.push(g.decl(s.name, TypeSpecKind::Struct { members }, init));
+        step_decls.push(g.decl(s.name, TypeSpecKind::Named(ty), init));
     }
 
     // (1) The clock: step times grow by the time since the last cycle.

@@ -425,7 +425,7 @@ pub fn lower(
         for s in &shared {
             if !taken_declared.contains(&s.sym) {
                 taken_declared.push(s.sym);
-                let role = format!("k$${}", g.interner.spelling(s.sym).to_string());
+                let role = format!("k$${}", g.interner.spelling(s.sym));
                 decls.push(g.elem_decl(&role, ElemType::Bool, s.span));
                 let target = g.hidden(&role, s.span);
                 let f = g.bool(false, s.span);
@@ -437,7 +437,7 @@ pub fn lower(
         fire_var[k] = fv;
         let mut conds = vec![g.name(cond_var[k])];
         for s in &shared {
-            let role = format!("k$${}", g.interner.spelling(s.sym).to_string());
+            let role = format!("k$${}", g.interner.spelling(s.sym));
             let taken = g.hidden(&role, s.span);
             conds.push(g.not(taken, s.span));
         }
@@ -446,7 +446,7 @@ pub fn lower(
         resolve.push(g.assign(target, cond, sp));
         let mut takes = Vec::new();
         for s in &shared {
-            let role = format!("k$${}", g.interner.spelling(s.sym).to_string());
+            let role = format!("k$${}", g.interner.spelling(s.sym));
             let target = g.hidden(&role, s.span);
             let t = g.bool(true, s.span);
             takes.push(g.assign(target, t, s.span));

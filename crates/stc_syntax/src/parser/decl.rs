@@ -167,6 +167,27 @@ impl Parser<'_> {
                 // E1201: the chart has no meaning; say nothing more.
                 self.pou_partial = true;
             }
+            if !self.at_kw(pou_end(kind))
+                && !self.at(TokenKind::Eof)
+                && !is_item_end(self.kind())
+                && !is_item_start(self.kind())
+                && !self.at_var_block_start()
+            {
+                // Statements after the chart: one E0030, skipped.
+                let span = self.tok().span();
+                self.unsupported(
+                    span,
+                    "Structured Text statements after a Sequential Function Chart are",
+                );
+                self.pou_partial = true;
+                while !self.at(TokenKind::Eof)
+                    && !is_item_end(self.kind())
+                    && !is_item_start(self.kind())
+                {
+                    self.bump();
+                }
+                self.superseded.push(span.to(self.prev().span()));
+            }
         } else if self.at_il_body() {
             il = Some(self.il_body());
         } else {

@@ -117,16 +117,17 @@ impl<'a> Sema<'a> {
                 }
             }
             if let Some(prio) = t.priority {
-                let ok = matches!(
-                    &self.ast.expr(prio).kind,
-                    ExprKind::Literal(Literal {
-                        value: LitValue::Int {
-                            negative: false,
-                            ..
-                        },
-                        prefix: None,
-                    })
-                );
+                let ok = matches!(&self.ast.expr(prio).kind, ExprKind::Error)
+                    || matches!(
+                        &self.ast.expr(prio).kind,
+                        ExprKind::Literal(Literal {
+                            value: LitValue::Int {
+                                negative: false,
+                                ..
+                            },
+                            prefix: None,
+                        })
+                    );
                 if !ok {
                     // Its names still count as used.
                     self.check_expr(prio, Some(TypeId::ERROR), Scope::Pou(p));
@@ -209,7 +210,12 @@ impl<'a> Sema<'a> {
         }
 
         // Step flags are read-only.
-        let steps: Vec<Symbol> = chart.steps.iter().map(|s| s.name.sym).collect();
+        let steps: Vec<Symbol> = chart
+            .steps
+            .iter()
+            .map(|s| s.name.sym)
+            .filter(|s| !vars.contains(s))
+            .collect();
         for e in &sfc.elements {
             match e {
                 SfcElement::Action(a) => self.step_writes(&a.body, &steps),

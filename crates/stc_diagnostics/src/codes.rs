@@ -538,6 +538,14 @@ missing transition or remove the step.";
     W1202 Warning "action never used"
 "An ACTION of a chart that no step associates never runs (its statements are
 still checked). Associate it with a step (`name(N);`) or remove it.";
+    W1203 Warning "steps never active together"
+"A transition from several steps (a simultaneous convergence, `FROM (a,
+b)`) fires only when all of them are active at once. Whatever the
+conditions, no sequence of transitions from the initial step makes these
+steps active together (they are on alternative branches, for example), so
+the transition never fires. Converge alternative branches with one
+transition from each step, and join with `FROM (a, b)` only the branches
+one transition started together (`TO (a, b)`).";
 }
 
 #[cfg(test)]

@@ -2791,6 +2791,43 @@ END_FUNCTION
     ),
     // Sequential Function Chart.
     (
+        Code::W1203,
+        r"PROGRAM Press
+VAR
+    go : BOOL;
+END_VAR
+INITIAL_STEP Idle :
+END_STEP
+STEP Left :
+END_STEP
+STEP Right :
+END_STEP
+TRANSITION FROM Idle TO Left := go;
+END_TRANSITION
+TRANSITION FROM Idle TO Right := NOT go;
+END_TRANSITION
+TRANSITION FROM (Left, Right) TO Idle := TRUE;   // W1203
+END_TRANSITION
+END_PROGRAM
+",
+        r"PROGRAM Press
+VAR
+    go : BOOL;
+END_VAR
+INITIAL_STEP Idle :
+END_STEP
+STEP Left :
+END_STEP
+STEP Right :
+END_STEP
+TRANSITION FROM Idle TO (Left, Right) := go;
+END_TRANSITION
+TRANSITION FROM (Left, Right) TO Idle := TRUE;
+END_TRANSITION
+END_PROGRAM
+",
+    ),
+    (
         Code::E1201,
         r"FUNCTION Next : INT
 VAR_INPUT

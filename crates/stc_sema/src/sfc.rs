@@ -248,6 +248,7 @@ impl<'a> Sema<'a> {
                     break;
                 }
             }
+            self.never_together(&chart, initial[0].name.sym);
             for s in &chart.steps {
                 if !reached.contains(&s.name.sym) && !vars.contains(&s.name.sym) {
                     let shown = self.spelled(s.name.sym, s.name.span);
@@ -260,6 +261,73 @@ impl<'a> Sema<'a> {
                         .with_label("no transition leads here from the initial step"),
                     );
                 }
+            }
+        }
+    }
+
+    /// W1203 for a transition from several steps (a convergence) that no
+    /// reachable situation has all active: the sets of active steps are
+    /// explored from the initial step, any enabled transition firing
+    /// (conditions are not known); charts of more than 128 steps or 4096
+    /// situations are not explored.
+    fn never_together(&mut self, chart: &ChartNames<'_>, initial: Symbol) {
+        if chart.steps.len() > 128 {
+            return;
+        }
+        let bit = |sym: Symbol| -> u128 {
+            chart
+                .steps
+                .iter()
+                .position(|s| s.name.sym == sym)
+                .map_or(0, |i| 1u128 << i)
+        };
+        let mask =
+            |names: &[stc_syntax::ast::Ident]| names.iter().fold(0u128, |m, n| m | bit(n.sym));
+        let transitions: Vec<(u128, u128)> = chart
+            .transitions
+            .iter()
+            .filter(|t| chart.transition_valid(t))
+            .map(|t| (mask(&t.from), mask(&t.to)))
+            .collect();
+        let mut seen: Vec<u128> = vec![bit(initial)];
+        let mut todo = seen.clone();
+        while let Some(m) = todo.pop() {
+            for &(from, to) in &transitions {
+                if m & from == from {
+                    let next = (m & !from) | to;
+                    if !seen.contains(&next) {
+                        if seen.len() >= 4096 {
+                            return;
+                        }
+                        seen.push(next);
+                        todo.push(next);
+                    }
+                }
+            }
+        }
+        for t in &chart.transitions {
+            if t.from.len() < 2 || !chart.transition_valid(t) {
+                continue;
+            }
+            let from = mask(&t.from);
+            // Steps that are themselves never active are W1201's.
+            let each = t
+                .from
+                .iter()
+                .all(|f| seen.iter().any(|m| m & bit(f.sym) != 0));
+            if each && !seen.iter().any(|m| m & from == from) {
+                let first = t.from[0];
+                self.emit(
+                    Diagnostic::new(
+                        Code::W1203,
+                        first.span,
+                        "these steps can never be active together: the transition never fires",
+                    )
+                    .with_label("never all active at once")
+                    .with_note(
+                        "a simultaneous convergence joins steps of branches started together by one transition",
+                    ),
+                );
             }
         }
     }

@@ -296,7 +296,7 @@ impl Parser<'_> {
 
     /// Whether the body that starts here is Instruction List: an IL operator
     /// with an operand, or a label, where ST would have `:=` or a call.
-    fn at_il_body(&self) -> bool {
+    pub(crate) fn at_il_body(&self) -> bool {
         match self.kind() {
             // `& x`, `&N x`: AND in IL; no ST statement starts with `&`.
             TokenKind::Amp => true,

@@ -344,6 +344,25 @@ impl Parser<'_> {
     /// statement list).
     fn sfc_stmts(&mut self) -> Vec<Stmt> {
         let mut out = Vec::new();
+        if self.at_il_body() {
+            // Instruction List inside a chart: one E0030, skipped to the
+            // element's END.
+            let span = self.tok().span();
+            self.unsupported(
+                span,
+                "Instruction List in the actions and transitions of a chart is",
+            );
+            self.pou_partial = true;
+            while !self.at(TokenKind::Eof)
+                && !is_item_end(self.kind())
+                && !is_item_start(self.kind())
+                && !self.at_sfc_word()
+            {
+                self.bump();
+            }
+            self.superseded.push(span.to(self.prev().span()));
+            return out;
+        }
         while !self.aborted && !super::stmt::ends_stmt_list(self.kind()) && !self.at_sfc_word() {
             let before = self.pos;
             if let Some(s) = self.statement() {

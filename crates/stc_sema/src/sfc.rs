@@ -48,6 +48,7 @@ impl<'a> Sema<'a> {
                 SfcElement::Action(_) => false,
             };
             if named_var && vars.contains(&name.sym) {
+                self.body.partial = true;
                 let shown = self.spelled(name.sym, name.span);
                 self.emit(
                     Diagnostic::new(
@@ -105,6 +106,7 @@ impl<'a> Sema<'a> {
             for n in t.from.iter().chain(&t.to) {
                 if chart.step(n.sym).is_none() {
                     unknown_step = true;
+                    self.body.partial = true;
                     let shown = self.spelled(n.sym, n.span);
                     self.emit(
                         Diagnostic::new(
@@ -180,6 +182,7 @@ impl<'a> Sema<'a> {
                     }
                 }
                 if chart.action(a.action.sym).is_none() && !vars.contains(&a.action.sym) {
+                    self.body.partial = true;
                     let shown = self.spelled(a.action.sym, a.action.span);
                     self.emit(
                         Diagnostic::new(

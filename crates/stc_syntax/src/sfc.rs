@@ -354,18 +354,6 @@ pub fn lower(
         .enumerate()
         .filter(|(_, t)| chart.transition_valid(t))
         .collect();
-    // A transition that names an unknown step (reported) has no place in
-    // the evolution; its condition is still checked (in a variable of its
-    // own), so what it uses is used.
-    for (i, t) in chart.transitions.iter().enumerate() {
-        if let (false, TransitionCond::Expr(e)) = (chart.transition_valid(t), &t.cond) {
-            let var = g.ident(&format!("SFC$$c{i}"), t.span);
-            decls.push(g.decl(var, TypeSpecKind::Elementary(ElemType::Bool), None));
-            let target = g.name(var);
-            let espan = g.ast.expr(*e).span;
-            body.push(g.assign(target, *e, espan));
-        }
-    }
     // The condition variable of each valid transition.
     let mut cond_var: Vec<Ident> = Vec::new();
     for &(i, t) in &transitions {

@@ -124,8 +124,9 @@ thousands of nested parentheses). Split the expression with intermediate
 variables.";
     E0030 Error "not supported yet"
 "The construct is valid in some IEC 61131-3 dialect but stc does not support
-it yet: Sequential Function Charts, the
-object-oriented extensions (METHOD, PROPERTY, ACTION, INTERFACE, EXTENDS,
+it yet: the
+object-oriented extensions (METHOD, PROPERTY, ACTION outside a Sequential
+Function Chart, chart elements after ST statements, INTERFACE, EXTENDS,
 IMPLEMENTS), POINTER TO, REFERENCE TO, REF_TO and the dereference `^`,
 `REF=`, UNION types, VAR_STAT/VAR_INST sections, variable-length arrays
 (`ARRAY[*]`, `ARRAY[..]`), the `__` operators of CODESYS and TwinCAT
@@ -438,6 +439,46 @@ says which; docs/netlist.md lists what a circuit expresses.";
 "Unrolling the loops and inlining the calls of the program would make a
 circuit of more than 1 000 000 components. Make the loops shorter or the
 program smaller.";
+    E1201 Error "chart in a FUNCTION"
+"A Sequential Function Chart keeps state from one call to the next (which
+steps are active, how long, what each action stored), and a FUNCTION keeps
+nothing between calls. Write the chart in a FUNCTION_BLOCK or a PROGRAM
+(docs/sfc.md).";
+    E1202 Error "chart without an initial step"
+"A chart starts with exactly one step active, its INITIAL_STEP. A chart
+without one would never do anything. Declare its first step with
+`INITIAL_STEP name :` instead of `STEP name :`.";
+    E1203 Error "second initial step"
+"A chart has exactly one INITIAL_STEP (IEC 61131-3 2.6.2). To start several
+branches at once, leave the initial step through a transition with several
+target steps: `TRANSITION FROM Init TO (A, B) := TRUE; END_TRANSITION`.";
+    E1204 Error "transition names an unknown step"
+"Every step a transition leaves (FROM) or enters (TO) must be declared with
+STEP or INITIAL_STEP in the same chart. Check the spelling, or declare the
+step.";
+    E1205 Error "action not defined"
+"A step associates an action that is neither an ACTION of the same chart nor
+a variable of the POU (a Boolean variable is set while the action is
+active). Declare the action with `ACTION name : ... END_ACTION`, or the
+variable.";
+    E1206 Error "name declared twice in a chart"
+"Steps, transitions and actions of one chart share the POU's names: two
+steps, two actions or two transitions with the same name (or a step and an
+action, a transition and a step...) would make `name.X` or an association
+ambiguous. Rename one of them.";
+    E1207 Error "transition PRIORITY not an integer literal"
+"`TRANSITION t (PRIORITY := n)` orders the transitions that leave the same
+step: the lowest value is tried first. The priority must be written as a
+non-negative integer literal, so the order is known when compiling.";
+    E1208 Error "step flag written"
+"`step.X` (the step is active) and `step.T` (how long it has been) are kept
+by the chart's evolution rules; the program may read them, never write them.
+Change the chart's transitions instead, or keep your own variable.";
+    E1209 Error "transition body without a name"
+"A transition whose condition is computed by statements (`TRANSITION t FROM a
+TO b : t := ...; END_TRANSITION`) gives its condition by assigning its own
+name, so it needs one. Name the transition, or write the condition as
+`:= expression;`.";
 
     W0101 Warning "result depends on evaluation order"
 "A variable is written by an output parameter (`=>`) or VAR_IN_OUT of one call
@@ -489,6 +530,22 @@ MatIEC, Beremiz and CODESYS provide them and programs use them. stc accepts
 them with this warning: BOOL gives 0.0 or 1.0; a REAL or LREAL gives TRUE
 when it is not zero (NaN too). `BOOL_TO_INT` then `INT_TO_REAL` is the
 portable spelling.";
+    W1201 Warning "step can never become active"
+"No sequence of transitions leads from the initial step to this step: it
+is never active and its actions never run by it. A step is reached when a
+transition enters it whose source steps can all be reached. Add the
+missing transition or remove the step.";
+    W1202 Warning "action never used"
+"An ACTION of a chart that no step associates never runs (its statements are
+still checked). Associate it with a step (`name(N);`) or remove it.";
+    W1203 Warning "steps never active together"
+"A transition from several steps (a simultaneous convergence, `FROM (a,
+b)`) fires only when all of them are active at once. Whatever the
+conditions, no sequence of transitions from the initial step makes these
+steps active together (they are on alternative branches, for example), so
+the transition never fires. Converge alternative branches with one
+transition from each step, and join with `FROM (a, b)` only the branches
+one transition started together (`TO (a, b)`).";
 }
 
 #[cfg(test)]

@@ -2789,6 +2789,373 @@ done:
 END_FUNCTION
 ",
     ),
+    // Sequential Function Chart.
+    (
+        Code::W1203,
+        r"PROGRAM Press
+VAR
+    go : BOOL;
+END_VAR
+INITIAL_STEP Idle :
+END_STEP
+STEP Left :
+END_STEP
+STEP Right :
+END_STEP
+TRANSITION FROM Idle TO Left := go;
+END_TRANSITION
+TRANSITION FROM Idle TO Right := NOT go;
+END_TRANSITION
+TRANSITION FROM (Left, Right) TO Idle := TRUE;   // W1203
+END_TRANSITION
+END_PROGRAM
+",
+        r"PROGRAM Press
+VAR
+    go : BOOL;
+END_VAR
+INITIAL_STEP Idle :
+END_STEP
+STEP Left :
+END_STEP
+STEP Right :
+END_STEP
+TRANSITION FROM Idle TO (Left, Right) := go;
+END_TRANSITION
+TRANSITION FROM (Left, Right) TO Idle := TRUE;
+END_TRANSITION
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1201,
+        r"FUNCTION Next : INT
+VAR_INPUT
+    go : BOOL;
+END_VAR
+INITIAL_STEP Idle :   // E1201
+END_STEP
+STEP Run :
+END_STEP
+TRANSITION FROM Idle TO Run := go;
+END_TRANSITION
+END_FUNCTION
+",
+        r"FUNCTION_BLOCK Next
+VAR_INPUT
+    go : BOOL;
+END_VAR
+INITIAL_STEP Idle :
+END_STEP
+STEP Run :
+END_STEP
+TRANSITION FROM Idle TO Run := go;
+END_TRANSITION
+END_FUNCTION_BLOCK
+",
+    ),
+    (
+        Code::E1202,
+        r"PROGRAM Press
+VAR
+    go : BOOL;
+END_VAR
+STEP Idle :   // E1202
+END_STEP
+STEP Run :
+END_STEP
+TRANSITION FROM Idle TO Run := go;
+END_TRANSITION
+END_PROGRAM
+",
+        r"PROGRAM Press
+VAR
+    go : BOOL;
+END_VAR
+INITIAL_STEP Idle :
+END_STEP
+STEP Run :
+END_STEP
+TRANSITION FROM Idle TO Run := go;
+END_TRANSITION
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1203,
+        r"PROGRAM Press
+VAR
+    go : BOOL;
+END_VAR
+INITIAL_STEP Idle :
+END_STEP
+INITIAL_STEP Run :   // E1203
+END_STEP
+TRANSITION FROM Idle TO Run := go;
+END_TRANSITION
+END_PROGRAM
+",
+        r"PROGRAM Press
+VAR
+    go : BOOL;
+END_VAR
+INITIAL_STEP Idle :
+END_STEP
+STEP Run :
+END_STEP
+TRANSITION FROM Idle TO Run := go;
+END_TRANSITION
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1204,
+        r"PROGRAM Press
+VAR
+    go : BOOL;
+END_VAR
+INITIAL_STEP Idle :
+END_STEP
+STEP Run :
+END_STEP
+TRANSITION FROM Idle TO Running := go;   // E1204
+END_TRANSITION
+END_PROGRAM
+",
+        r"PROGRAM Press
+VAR
+    go : BOOL;
+END_VAR
+INITIAL_STEP Idle :
+END_STEP
+STEP Run :
+END_STEP
+TRANSITION FROM Idle TO Run := go;
+END_TRANSITION
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1205,
+        r"PROGRAM Press
+VAR
+    go : BOOL;
+END_VAR
+INITIAL_STEP Idle :
+END_STEP
+STEP Run :
+    Motor(N);   // E1205
+END_STEP
+TRANSITION FROM Idle TO Run := go;
+END_TRANSITION
+END_PROGRAM
+",
+        r"PROGRAM Press
+VAR
+    go : BOOL;
+    Motor : BOOL;
+END_VAR
+INITIAL_STEP Idle :
+END_STEP
+STEP Run :
+    Motor(N);
+END_STEP
+TRANSITION FROM Idle TO Run := go;
+END_TRANSITION
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1206,
+        r"PROGRAM Press
+VAR
+    go : BOOL;
+END_VAR
+INITIAL_STEP Idle :
+END_STEP
+STEP Run :
+END_STEP
+STEP Run :   // E1206
+END_STEP
+TRANSITION FROM Idle TO Run := go;
+END_TRANSITION
+END_PROGRAM
+",
+        r"PROGRAM Press
+VAR
+    go : BOOL;
+END_VAR
+INITIAL_STEP Idle :
+END_STEP
+STEP Run :
+END_STEP
+TRANSITION FROM Idle TO Run := go;
+END_TRANSITION
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1207,
+        r"PROGRAM Press
+VAR
+    go : BOOL;
+END_VAR
+INITIAL_STEP Idle :
+END_STEP
+STEP Run :
+END_STEP
+TRANSITION (PRIORITY := -1) FROM Idle TO Run := go;   // E1207
+END_TRANSITION
+END_PROGRAM
+",
+        r"PROGRAM Press
+VAR
+    go : BOOL;
+END_VAR
+INITIAL_STEP Idle :
+END_STEP
+STEP Run :
+END_STEP
+TRANSITION (PRIORITY := 1) FROM Idle TO Run := go;
+END_TRANSITION
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1208,
+        r"PROGRAM Press
+VAR
+    go : BOOL;
+END_VAR
+INITIAL_STEP Idle :
+    Start(N);
+END_STEP
+STEP Run :
+END_STEP
+TRANSITION FROM Idle TO Run := go;
+END_TRANSITION
+ACTION Start :
+    Run.X := go;   // E1208
+END_ACTION
+END_PROGRAM
+",
+        r"PROGRAM Press
+VAR
+    go : BOOL;
+    started : BOOL;
+END_VAR
+INITIAL_STEP Idle :
+    Start(N);
+END_STEP
+STEP Run :
+END_STEP
+TRANSITION FROM Idle TO Run := go;
+END_TRANSITION
+ACTION Start :
+    started := go;
+END_ACTION
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1209,
+        r"PROGRAM Press
+VAR
+    level : INT;
+END_VAR
+INITIAL_STEP Idle :
+END_STEP
+STEP Run :
+END_STEP
+TRANSITION FROM Idle TO Run :   // E1209
+    level := level + 1;
+END_TRANSITION
+END_PROGRAM
+",
+        r"PROGRAM Press
+VAR
+    level : INT;
+END_VAR
+INITIAL_STEP Idle :
+END_STEP
+STEP Run :
+END_STEP
+TRANSITION Full FROM Idle TO Run :
+    level := level + 1;
+    Full := level > 10;
+END_TRANSITION
+END_PROGRAM
+",
+    ),
+    (
+        Code::W1201,
+        r"PROGRAM Press
+VAR
+    go : BOOL;
+END_VAR
+INITIAL_STEP Idle :
+END_STEP
+STEP Run :
+END_STEP
+STEP Stop :   // W1201
+END_STEP
+TRANSITION FROM Idle TO Run := go;
+END_TRANSITION
+END_PROGRAM
+",
+        r"PROGRAM Press
+VAR
+    go : BOOL;
+END_VAR
+INITIAL_STEP Idle :
+END_STEP
+STEP Run :
+END_STEP
+STEP Stop :
+END_STEP
+TRANSITION FROM Idle TO Run := go;
+END_TRANSITION
+TRANSITION FROM Run TO Stop := NOT go;
+END_TRANSITION
+END_PROGRAM
+",
+    ),
+    (
+        Code::W1202,
+        r"PROGRAM Press
+VAR
+    go : BOOL;
+    n : INT;
+END_VAR
+INITIAL_STEP Idle :
+END_STEP
+STEP Run :
+END_STEP
+TRANSITION FROM Idle TO Run := go;
+END_TRANSITION
+ACTION Count :   // W1202
+    n := n + 1;
+END_ACTION
+END_PROGRAM
+",
+        r"PROGRAM Press
+VAR
+    go : BOOL;
+    n : INT;
+END_VAR
+INITIAL_STEP Idle :
+END_STEP
+STEP Run :
+    Count(N);
+END_STEP
+TRANSITION FROM Idle TO Run := go;
+END_TRANSITION
+ACTION Count :
+    n := n + 1;
+END_ACTION
+END_PROGRAM
+",
+    ),
 ];
 
 #[cfg(test)]

@@ -31,6 +31,11 @@ enum Block {
     For,
     While,
     Repeat,
+    /// The elements of a Sequential Function Chart (their words are not
+    /// reserved: recognised at the start of a statement of a POU body).
+    Step,
+    Transition,
+    Action,
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -312,7 +317,22 @@ impl<'a> Layout<'a> {
         }
         let top_level = self.stack.is_empty();
         let in_config = matches!(top.map(|f| f.block), Some(Block::Config | Block::Resource));
+        let sfc_open = self.sfc_opens(i, top);
+        let sfc_close = self.sfc_closes(i);
         match kind {
+            _ if sfc_open.is_some() => {
+                forced = Some(self.body_level());
+                push = sfc_open;
+            }
+            _ if sfc_close.is_some() => {
+                if let Some(pos) = self.stack.iter().rposition(|f| Some(f.block) == sfc_close) {
+                    let f = self.stack[pos];
+                    self.stack.truncate(pos);
+                    forced = Some(f.indent);
+                } else {
+                    forced = Some(self.body_level());
+                }
+            }
             TokenKind::Kw(k) if closes(k).is_some() => {
                 let b = closes(k);
                 if let Some(pos) = self.stack.iter().rposition(|f| Some(f.block) == b) {
@@ -436,7 +456,19 @@ impl<'a> Layout<'a> {
                 arm: false,
             });
         }
+        if sfc_close.is_some() {
+            self.stmt_end(Pending::BreakUnlessSemi);
+        }
         match kind {
+            TokenKind::Colon
+                if self.depth == 0
+                    && top.is_some_and(|f| {
+                        f.header
+                            && matches!(f.block, Block::Step | Block::Transition | Block::Action)
+                    }) =>
+            {
+                self.end_header();
+            }
             TokenKind::LParen | TokenKind::LBracket => self.depth += 1,
             TokenKind::RParen | TokenKind::RBracket => self.depth = self.depth.saturating_sub(1),
             TokenKind::Semi if self.depth == 0 => self.stmt_end(Pending::Break),
@@ -476,6 +508,62 @@ impl<'a> Layout<'a> {
             _ => {}
         }
         self.prev_tok = Some(kind);
+    }
+
+    /// The chart element the token at `i` opens: a step, transition or
+    /// action word at the start of a statement directly in a POU body,
+    /// followed by what only a chart puts there.
+    fn sfc_opens(&self, i: usize, top: Option<Frame>) -> Option<Block> {
+        if self.toks[i].kind != TokenKind::Ident
+            || !self.at_stmt_start
+            || self.depth != 0
+            || !top.is_some_and(|f| f.block == Block::Pou)
+        {
+            return None;
+        }
+        let word = self.src(i);
+        let next = |n: usize| self.toks.get(i + n).map(|t| t.kind);
+        let next_is = |n: usize, w: &str| {
+            next(n) == Some(TokenKind::Ident)
+                && self.toks.get(i + n).is_some_and(|t| {
+                    self.text[(t.lo - self.base) as usize..(t.hi - self.base) as usize]
+                        .eq_ignore_ascii_case(w)
+                })
+        };
+        let named_colon = next(1) == Some(TokenKind::Ident) && next(2) == Some(TokenKind::Colon);
+        if (word.eq_ignore_ascii_case("STEP") || word.eq_ignore_ascii_case("INITIAL_STEP"))
+            && named_colon
+        {
+            return Some(Block::Step);
+        }
+        if word.eq_ignore_ascii_case("ACTION") && named_colon {
+            return Some(Block::Action);
+        }
+        if word.eq_ignore_ascii_case("TRANSITION")
+            && (next_is(1, "FROM")
+                || next(1) == Some(TokenKind::LParen)
+                || next(1) == Some(TokenKind::Ident)
+                    && (next_is(2, "FROM") || next(2) == Some(TokenKind::LParen)))
+        {
+            return Some(Block::Transition);
+        }
+        None
+    }
+
+    /// The chart element the token at `i` closes (END_STEP...).
+    fn sfc_closes(&self, i: usize) -> Option<Block> {
+        if self.toks[i].kind != TokenKind::Ident || self.depth != 0 {
+            return None;
+        }
+        let word = self.src(i);
+        [
+            ("END_STEP", Block::Step),
+            ("END_TRANSITION", Block::Transition),
+            ("END_ACTION", Block::Action),
+        ]
+        .into_iter()
+        .find(|(w, b)| word.eq_ignore_ascii_case(w) && self.stack.iter().any(|f| f.block == *b))
+        .map(|(_, b)| b)
     }
 
     /// A line break the user wrote ends a POU's, configuration's or
@@ -534,7 +622,13 @@ impl<'a> Layout<'a> {
             }
             _ => {}
         }
+        let transition_head = self
+            .stack
+            .last()
+            .is_some_and(|f| f.block == Block::Transition && f.header);
         match kind {
+            // `TRANSITION t (PRIORITY := 1)`, `FROM (a, b)`, `TO (c, d)`.
+            TokenKind::LParen if transition_head => true,
             TokenKind::LParen => !matches!(prev, TokenKind::Ident),
             TokenKind::LBracket => !matches!(
                 prev,

@@ -149,3 +149,11 @@ fn empty_and_comment_only_files() {
     check("\n\n", "");
     check("// only a comment\n", "// only a comment\n");
 }
+
+#[test]
+fn sfc_elements_are_blocks() {
+    check(
+        "PROGRAM p VAR go, lamp : BOOL; END_VAR\nINITIAL_STEP s0: lamp(N); END_STEP\nSTEP s1: a(L,T#1s); END_STEP\nTRANSITION t(PRIORITY:=1) FROM s0 TO (s1) := go; END_TRANSITION\nTRANSITION u FROM s1 TO s0: u := NOT go; END_TRANSITION\nACTION a: go := FALSE; END_ACTION\nEND_PROGRAM",
+        "PROGRAM p\n    VAR\n        go, lamp : BOOL;\n    END_VAR\n    INITIAL_STEP s0 :\n        lamp(N);\n    END_STEP\n    STEP s1 :\n        a(L, T#1s);\n    END_STEP\n    TRANSITION t (PRIORITY := 1) FROM s0 TO (s1) := go;\n    END_TRANSITION\n    TRANSITION u FROM s1 TO s0 :\n        u := NOT go;\n    END_TRANSITION\n    ACTION a :\n        go := FALSE;\n    END_ACTION\nEND_PROGRAM\n",
+    );
+}

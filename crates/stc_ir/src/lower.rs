@@ -50,6 +50,11 @@ pub fn lower(ast: &Ast, analysis: Analysis, interner: &Interner, sources: &Sourc
                 // stays its POU's or variable's (`main WITH t : Main`).
                 declare(i.name, i.name_span, false);
             }
+            for t in &r.tasks {
+                // A task is shown as spelled at its declaration, whatever
+                // else has its name (a structure field `T`).
+                declare(t.name, t.name_span, false);
+            }
         }
     }
     for t in 0..analysis.types.len() {

@@ -166,6 +166,9 @@ impl Project {
         let mut out = Vec::new();
         if let Some(p) = self.pou_at(at) {
             vars_of(&p.var_blocks, &mut out);
+            // The state a chart's meaning declares (`SFC$$...`) is no
+            // user's name.
+            out.retain(|(s, _, _)| !self.spelling(*s).contains('$'));
         }
         for it in self.items() {
             match it {
@@ -224,6 +227,7 @@ impl Project {
                         .collect();
                     let mut tmp = Vec::new();
                     vars_of(&public, &mut tmp);
+                    tmp.retain(|(s, _, _)| !self.spelling(*s).contains('$'));
                     // Re-point to the POU's own blocks (borrowed from self).
                     for (s, sp, _) in tmp {
                         if let Some(d) = find_var(&p.var_blocks, s) {
@@ -458,6 +462,7 @@ impl Project {
             let mut out = Vec::new();
             let mut tmp = Vec::new();
             vars_of(blocks, &mut tmp);
+            tmp.retain(|(s, _, _)| !self.spelling(*s).contains('$'));
             for (s, sp, d) in tmp {
                 let span = match d {
                     Decl::Var(v, ..) => v.span,

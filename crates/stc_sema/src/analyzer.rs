@@ -71,6 +71,9 @@ pub(crate) struct Body {
     /// In an Instruction List body: the type of the current result for the
     /// instruction being checked (`ExprKind::IlCr` has it).
     pub il_cr: Option<TypeId>,
+    /// A chart error left part of the body out of its meaning (an unknown
+    /// step, an undefined action): which variables it uses is not known.
+    pub partial: bool,
 }
 
 pub(crate) struct Sema<'a> {

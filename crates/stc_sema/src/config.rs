@@ -182,6 +182,7 @@ impl<'a> Sema<'a> {
             };
             tasks.push(TaskDef {
                 name: t.name.sym,
+                name_span: t.name.span,
                 span: t.span,
                 single,
                 interval,

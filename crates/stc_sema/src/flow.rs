@@ -64,7 +64,7 @@ impl<'a> Sema<'a> {
         }
         // A part reported as not supported (an IL or SFC body, a METHOD...)
         // may use any variable and assign the result: nothing is known.
-        let partial = pou.partial;
+        let partial = pou.partial || self.body.partial;
         let vars: Vec<(stc_syntax::Symbol, Span, Section, bool, crate::TypeId)> = self.pous
             [p.0 as usize]
             .vars

@@ -23,6 +23,7 @@ mod flow;
 pub mod idx;
 mod il;
 pub mod prelude;
+mod sfc;
 mod stmt;
 #[cfg(test)]
 mod tests;
@@ -173,6 +174,8 @@ pub struct GlobalDef {
 #[derive(Clone, Debug)]
 pub struct TaskDef {
     pub name: Symbol,
+    /// Where its name is declared (its spelling).
+    pub name_span: Span,
     pub span: Span,
     /// The event input of an event task.
     pub single: Option<DataRef>,

@@ -64,6 +64,50 @@ VAR M : BOOL; END_VAR
     Q := NOT CLK AND NOT M;
     M := NOT CLK;
 END_FUNCTION_BLOCK
+
+(* The action control of a Sequential Function Chart (docs/sfc.md): one
+   instance per action, one input per qualifier (the OR of the flags of the
+   steps that associate the action with it) and one duration per timed
+   qualifier. Q is the action's activity; A runs the action: while Q, once
+   more in the cycle after Q falls (the final scan), and once at the rising
+   edge of P1 and the falling edge of P0. R resets what S, SD, DS and SL
+   stored. *)
+TYPE
+    (* The flags of a step of a chart: active, and for how long. *)
+    SFC_STEP : STRUCT
+        X : BOOL;
+        T : TIME;
+    END_STRUCT;
+END_TYPE
+
+FUNCTION_BLOCK SFC_ACTION_CONTROL
+VAR_INPUT
+    N, R, S, L, D, P, P0, P1, SD, DS, SL : BOOL;
+    L_T, D_T, SD_T, DS_T, SL_T : TIME;
+END_VAR
+VAR_OUTPUT Q : BOOL; A : BOOL; END_VAR
+VAR
+    s_set, sd_set, ds_set, sl_set : BOOL;
+    l_tmr, d_tmr, sd_tmr, ds_tmr, sl_tmr : TON;
+    p_prev, p0_prev, p1_prev, q_prev : BOOL;
+END_VAR
+    s_set := NOT R AND (S OR s_set);
+    sd_set := NOT R AND (SD OR sd_set);
+    sd_tmr(IN := sd_set, PT := SD_T);
+    ds_tmr(IN := DS, PT := DS_T);
+    ds_set := NOT R AND (ds_tmr.Q OR ds_set);
+    sl_set := NOT R AND (SL OR sl_set);
+    sl_tmr(IN := sl_set, PT := SL_T);
+    l_tmr(IN := L, PT := L_T);
+    d_tmr(IN := D, PT := D_T);
+    Q := N OR (L AND NOT l_tmr.Q) OR d_tmr.Q OR (P AND NOT p_prev) OR s_set
+        OR sd_tmr.Q OR ds_set OR (sl_set AND NOT sl_tmr.Q);
+    A := Q OR q_prev OR (P1 AND NOT p1_prev) OR (p0_prev AND NOT P0);
+    q_prev := Q;
+    p_prev := P;
+    p1_prev := P1;
+    p0_prev := P0;
+END_FUNCTION_BLOCK
 "#;
 
 /// CTU, CTD and CTUD for one counter type: counters saturate at the limits

@@ -20,6 +20,9 @@ impl<'a> Sema<'a> {
         if let Some(il) = &pou.il {
             self.il_body(p, il);
         }
+        if let Some(sfc) = &pou.sfc {
+            self.check_sfc(p, pou, sfc);
+        }
         self.pou_warnings(p, pou);
     }
 

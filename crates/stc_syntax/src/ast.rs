@@ -571,6 +571,12 @@ pub struct Pou {
     pub body: Vec<Stmt>,
     /// The body in Instruction List (then `body` is empty).
     pub il: Option<IlBody>,
+    /// The body as a Sequential Function Chart, as written (docs/sfc.md).
+    /// Then `body` holds its meaning in ST (the evolution rules over the
+    /// step flags and the action controls, made by the parser) and the last
+    /// [`SfcBody::generated_blocks`] blocks of `var_blocks` declare the
+    /// state it needs; the printer and the dump show the chart instead.
+    pub sfc: Option<SfcBody>,
     pub span: Span,
     pub pragmas: Vec<Span>,
     /// The base named by `EXTENDS` (reported as not supported): members
@@ -647,6 +653,143 @@ pub enum Item {
     /// A VAR_GLOBAL block outside any configuration (a global variable list
     /// as CODESYS-style projects write them).
     GlobalVars(VarBlock),
+}
+
+// ---------------------------------------------------------------------------
+// Sequential Function Chart
+
+/// A body written as a Sequential Function Chart (IEC 61131-3 2nd edition
+/// 2.6, textual form): its steps, transitions and actions in source order.
+#[derive(Clone, PartialEq, Debug)]
+pub struct SfcBody {
+    pub elements: Vec<SfcElement>,
+    pub span: Span,
+    /// How many of the POU's last variable blocks the parser made for the
+    /// chart's state (never printed).
+    pub generated_blocks: usize,
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub enum SfcElement {
+    Step(SfcStep),
+    Transition(SfcTransition),
+    Action(SfcAction),
+}
+
+/// `[INITIAL_]STEP name : associations END_STEP`.
+#[derive(Clone, PartialEq, Debug)]
+pub struct SfcStep {
+    pub initial: bool,
+    pub name: Ident,
+    pub assocs: Vec<ActionAssoc>,
+    pub span: Span,
+}
+
+/// `action(qualifier [, duration] [, indicator...]);` in a step.
+#[derive(Clone, PartialEq, Debug)]
+pub struct ActionAssoc {
+    pub action: Ident,
+    /// The qualifier as written (`None`: N).
+    pub qualifier: Option<(Qualifier, Span)>,
+    /// The duration of a timed qualifier (L, D, SD, DS, SL).
+    pub duration: Option<ExprId>,
+    pub indicators: Vec<Ident>,
+    pub span: Span,
+}
+
+/// An action qualifier (2nd edition Table 45, with the 3rd edition's P0
+/// and P1).
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
+pub enum Qualifier {
+    N,
+    R,
+    S,
+    L,
+    D,
+    P,
+    P0,
+    P1,
+    SD,
+    DS,
+    SL,
+}
+
+impl Qualifier {
+    pub const ALL: [Qualifier; 11] = [
+        Qualifier::N,
+        Qualifier::R,
+        Qualifier::S,
+        Qualifier::L,
+        Qualifier::D,
+        Qualifier::P,
+        Qualifier::P0,
+        Qualifier::P1,
+        Qualifier::SD,
+        Qualifier::DS,
+        Qualifier::SL,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Qualifier::N => "N",
+            Qualifier::R => "R",
+            Qualifier::S => "S",
+            Qualifier::L => "L",
+            Qualifier::D => "D",
+            Qualifier::P => "P",
+            Qualifier::P0 => "P0",
+            Qualifier::P1 => "P1",
+            Qualifier::SD => "SD",
+            Qualifier::DS => "DS",
+            Qualifier::SL => "SL",
+        }
+    }
+
+    /// The qualifier spelled `word` (case-insensitive).
+    pub fn from_word(word: &str) -> Option<Qualifier> {
+        Qualifier::ALL
+            .into_iter()
+            .find(|q| q.name().eq_ignore_ascii_case(word))
+    }
+
+    /// Whether the qualifier takes a duration.
+    pub fn timed(self) -> bool {
+        matches!(
+            self,
+            Qualifier::L | Qualifier::D | Qualifier::SD | Qualifier::DS | Qualifier::SL
+        )
+    }
+}
+
+/// `TRANSITION [name] [(PRIORITY := n)] FROM steps TO steps condition
+/// END_TRANSITION`.
+#[derive(Clone, PartialEq, Debug)]
+pub struct SfcTransition {
+    pub name: Option<Ident>,
+    pub priority: Option<ExprId>,
+    pub from: Vec<Ident>,
+    /// Whether FROM was written with parentheses (`FROM (a, b)`).
+    pub from_parens: bool,
+    pub to: Vec<Ident>,
+    pub to_parens: bool,
+    pub cond: TransitionCond,
+    pub span: Span,
+}
+
+#[derive(Clone, PartialEq, Debug)]
+pub enum TransitionCond {
+    /// `:= expression;`
+    Expr(ExprId),
+    /// `: statements` that assign the condition to the transition's name.
+    Body(Vec<Stmt>),
+}
+
+/// `ACTION name : statements END_ACTION`.
+#[derive(Clone, PartialEq, Debug)]
+pub struct SfcAction {
+    pub name: Ident,
+    pub body: Vec<Stmt>,
+    pub span: Span,
 }
 
 // ---------------------------------------------------------------------------

@@ -118,11 +118,16 @@ impl Dumper<'_> {
         }
         self.line(p.span, &text);
         self.nested(|d| {
-            for b in &p.var_blocks {
+            let shown = p.var_blocks.len() - p.sfc.as_ref().map_or(0, |s| s.generated_blocks);
+            for b in &p.var_blocks[..shown] {
                 d.var_block(b);
             }
-            d.line(p.span, "Body");
-            d.nested(|d| d.stmts(&p.body));
+            if let Some(sfc) = &p.sfc {
+                d.sfc(sfc);
+            } else {
+                d.line(p.span, "Body");
+                d.nested(|d| d.stmts(&p.body));
+            }
             if let Some(il) = &p.il {
                 d.line(il.span, "IlBody");
                 let mut lines = Vec::new();
@@ -275,6 +280,44 @@ impl Dumper<'_> {
                         });
                     }
                 });
+            }
+        });
+    }
+
+    fn sfc(&mut self, sfc: &SfcBody) {
+        self.line(sfc.span, "SfcBody");
+        self.nested(|d| {
+            for e in &sfc.elements {
+                match e {
+                    SfcElement::Step(st) => {
+                        let kw = if st.initial { "InitialStep" } else { "Step" };
+                        d.line(st.span, &format!("{kw} {}", d.name(st.name)));
+                        d.nested(|d| {
+                            for a in &st.assocs {
+                                let text = crate::print::sfc_assoc(a, d.interner, &|e| d.expr(e));
+                                d.line(a.span, &format!("Assoc {text}"));
+                            }
+                        });
+                    }
+                    SfcElement::Transition(t) => {
+                        let head = crate::print::sfc_transition_head(t, d.interner, &|e| d.expr(e));
+                        let head = head.replacen("TRANSITION", "Transition", 1);
+                        match &t.cond {
+                            TransitionCond::Expr(e) => {
+                                let text = format!("{head} := {}", d.expr(*e));
+                                d.line(t.span, &text);
+                            }
+                            TransitionCond::Body(body) => {
+                                d.line(t.span, &format!("{head} :"));
+                                d.nested(|d| d.stmts(body));
+                            }
+                        }
+                    }
+                    SfcElement::Action(a) => {
+                        d.line(a.span, &format!("Action {}", d.name(a.name)));
+                        d.nested(|d| d.stmts(&a.body));
+                    }
+                }
             }
         });
     }

@@ -14,6 +14,7 @@ pub mod literal;
 pub mod parser;
 pub mod print;
 pub mod real;
+pub mod sfc;
 pub mod token;
 
 pub use intern::{Interner, Symbol};

@@ -140,10 +140,15 @@ impl Printer<'_> {
         }
         self.line(&head);
         self.nested(|p| {
-            for b in &pou.var_blocks {
+            let shown = pou.var_blocks.len() - pou.sfc.as_ref().map_or(0, |s| s.generated_blocks);
+            for b in &pou.var_blocks[..shown] {
                 p.var_block(b);
             }
-            p.stmts(&pou.body);
+            if let Some(sfc) = &pou.sfc {
+                p.sfc(sfc);
+            } else {
+                p.stmts(&pou.body);
+            }
             if let Some(il) = &pou.il {
                 let mut lines = Vec::new();
                 il_lines(&il.instrs, p.interner, &|e| p.expr(e, 0), 0, &mut lines);
@@ -155,6 +160,43 @@ impl Printer<'_> {
             }
         });
         self.line(pou.kind.end_keyword());
+    }
+
+    fn sfc(&mut self, sfc: &SfcBody) {
+        for e in &sfc.elements {
+            match e {
+                SfcElement::Step(st) => {
+                    let kw = if st.initial { "INITIAL_STEP" } else { "STEP" };
+                    self.line(&format!("{kw} {} :", self.name(st.name)));
+                    self.nested(|p| {
+                        for a in &st.assocs {
+                            let text = sfc_assoc(a, p.interner, &|e| p.expr(e, 0));
+                            p.line(&format!("{text};"));
+                        }
+                    });
+                    self.line("END_STEP");
+                }
+                SfcElement::Transition(t) => {
+                    let head = sfc_transition_head(t, self.interner, &|e| self.expr(e, 0));
+                    match &t.cond {
+                        TransitionCond::Expr(e) => {
+                            let text = format!("{head} := {};", self.expr(*e, 0));
+                            self.line(&text);
+                        }
+                        TransitionCond::Body(body) => {
+                            self.line(&format!("{head} :"));
+                            self.nested(|p| p.stmts(body));
+                        }
+                    }
+                    self.line("END_TRANSITION");
+                }
+                SfcElement::Action(a) => {
+                    self.line(&format!("ACTION {} :", self.name(a.name)));
+                    self.nested(|p| p.stmts(&a.body));
+                    self.line("END_ACTION");
+                }
+            }
+        }
     }
 
     fn var_block(&mut self, b: &VarBlock) {
@@ -759,4 +801,54 @@ fn il_formal_lines(
         text: ")".into(),
         span,
     });
+}
+
+/// `action(qualifier, duration, indicators)` of a step.
+pub(crate) fn sfc_assoc(
+    a: &ActionAssoc,
+    interner: &Interner,
+    expr: &dyn Fn(ExprId) -> String,
+) -> String {
+    let mut parts = Vec::new();
+    if let Some((q, _)) = a.qualifier {
+        parts.push(q.name().to_string());
+    }
+    if let Some(d) = a.duration {
+        parts.push(expr(d));
+    }
+    for i in &a.indicators {
+        parts.push(interner.spelling(i.sym).to_string());
+    }
+    format!("{}({})", interner.spelling(a.action.sym), parts.join(", "))
+}
+
+/// `TRANSITION [name] [(PRIORITY := n)] FROM steps TO steps`.
+pub(crate) fn sfc_transition_head(
+    t: &SfcTransition,
+    interner: &Interner,
+    expr: &dyn Fn(ExprId) -> String,
+) -> String {
+    let steps = |names: &[Ident], parens: bool| {
+        let list: Vec<&str> = names.iter().map(|n| interner.spelling(n.sym)).collect();
+        if parens || list.len() != 1 {
+            format!("({})", list.join(", "))
+        } else {
+            list.join(", ")
+        }
+    };
+    let mut head = String::from("TRANSITION");
+    if let Some(n) = t.name {
+        head.push(' ');
+        head.push_str(interner.spelling(n.sym));
+    }
+    if let Some(p) = t.priority {
+        let _ = write!(head, " (PRIORITY := {})", expr(p));
+    }
+    let _ = write!(
+        head,
+        " FROM {} TO {}",
+        steps(&t.from, t.from_parens),
+        steps(&t.to, t.to_parens)
+    );
+    head
 }

@@ -170,7 +170,7 @@ impl<'a> Builder<'a> {
                     .tasks
                     .iter()
                     .map(|t| TaskDesc {
-                        name: m.name(t.name).to_string(),
+                        name: m.spelled(t.name, t.name_span).to_string(),
                         interval_ns: t.interval,
                         priority: t.priority,
                         single: t

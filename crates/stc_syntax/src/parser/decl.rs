@@ -7,8 +7,8 @@ use super::{is_item_end, is_item_start, is_var_block_start, Parser};
 use crate::ast::{
     AccessDecl, AccessDirection, ArrayDim, ArrayInitElem, ConfigInit, Configuration, Edge,
     EnumMember, Init, InitKind, Item, Located, Pou, PouKind, ProgramConfig, ProgramConn, Resource,
-    Retention, StructInitElem, TaskDecl, TypeDecl, TypeSpec, TypeSpecKind, VarBlock, VarBlockItems,
-    VarDecl, VarKind,
+    Retention, SfcBody, StructInitElem, TaskDecl, TypeDecl, TypeSpec, TypeSpecKind, VarBlock,
+    VarBlockItems, VarDecl, VarKind,
 };
 use crate::literal;
 use crate::token::{ElemType, Keyword, TokenKind};
@@ -158,7 +158,37 @@ impl Parser<'_> {
         }
         let mut body = Vec::new();
         let mut il = None;
-        if self.at_il_body() {
+        let mut sfc = None;
+        if self.at_sfc_body() {
+            let (chart, meaning) = self.sfc_body(kind, &mut var_blocks);
+            sfc = Some(chart);
+            body = meaning;
+            if kind == PouKind::Function {
+                // E1201: the chart has no meaning; say nothing more.
+                self.pou_partial = true;
+            }
+            if !self.at_kw(pou_end(kind))
+                && !self.at(TokenKind::Eof)
+                && !is_item_end(self.kind())
+                && !is_item_start(self.kind())
+                && !self.at_var_block_start()
+            {
+                // Statements after the chart: one E0030, skipped.
+                let span = self.tok().span();
+                self.unsupported(
+                    span,
+                    "Structured Text statements after a Sequential Function Chart are",
+                );
+                self.pou_partial = true;
+                while !self.at(TokenKind::Eof)
+                    && !is_item_end(self.kind())
+                    && !is_item_start(self.kind())
+                {
+                    self.bump();
+                }
+                self.superseded.push(span.to(self.prev().span()));
+            }
+        } else if self.at_il_body() {
             il = Some(self.il_body());
         } else {
             body = self.stmt_list(false);
@@ -178,7 +208,10 @@ impl Parser<'_> {
                 );
                 self.report(d);
                 if let Some(b) = self.var_block() {
-                    var_blocks.push(b);
+                    // Before the blocks a chart's meaning declares.
+                    let at =
+                        var_blocks.len() - sfc.as_ref().map_or(0, |s: &SfcBody| s.generated_blocks);
+                    var_blocks.insert(at, b);
                 }
                 body.extend(self.stmt_list(false));
                 continue;
@@ -210,6 +243,7 @@ impl Parser<'_> {
             var_blocks,
             body,
             il,
+            sfc,
             span: opener.to(self.prev().span()),
             pragmas,
             extends,
@@ -262,7 +296,7 @@ impl Parser<'_> {
 
     /// Whether the body that starts here is Instruction List: an IL operator
     /// with an operand, or a label, where ST would have `:=` or a call.
-    fn at_il_body(&self) -> bool {
+    pub(crate) fn at_il_body(&self) -> bool {
         match self.kind() {
             // `& x`, `&N x`: AND in IL; no ST statement starts with `&`.
             TokenKind::Amp => true,

@@ -18,6 +18,7 @@
 mod decl;
 mod expr;
 mod il;
+mod sfc;
 mod stmt;
 
 use stc_diagnostics::{Code, Diagnostic, Span};

@@ -18,7 +18,7 @@ use crate::ast::{CaseArm, CaseLabel, CondBranch, ExprKind, Stmt, StmtKind};
 use crate::token::{Keyword, TokenKind};
 
 /// Tokens at which a statement list stops.
-fn ends_stmt_list(k: TokenKind) -> bool {
+pub(crate) fn ends_stmt_list(k: TokenKind) -> bool {
     matches!(
         k,
         TokenKind::Eof
@@ -117,7 +117,7 @@ impl Parser<'_> {
         self.skip_stmt();
     }
 
-    fn statement(&mut self) -> Option<Stmt> {
+    pub(crate) fn statement(&mut self) -> Option<Stmt> {
         let t = self.tok();
         let simple = |p: &mut Self, kind| {
             p.bump();
@@ -345,7 +345,10 @@ impl Parser<'_> {
                     ));
         if sfc {
             let span = self.tok().span();
-            self.unsupported(span, "Sequential Function Chart bodies are");
+            self.unsupported(
+                span,
+                "Sequential Function Chart elements after Structured Text statements are",
+            );
             self.pou_partial = true;
             while !self.at(TokenKind::Eof)
                 && !is_item_end(self.kind())

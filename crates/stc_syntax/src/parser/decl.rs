@@ -83,6 +83,23 @@ impl Parser<'_> {
             self.missing_semi_before_end();
             return;
         }
+        if self.newline_between(self.prev(), self.tok()) {
+            // The `;` is missing at the end of a line: the next line is a
+            // declaration of its own, read as one (skipping it would lose
+            // it, and every use of it would be an error).
+            if !self.after_unterminated_string() {
+                let prev = self.prev().span().shrink_to_hi();
+                let d = Diagnostic::new(
+                    Code::E0020,
+                    self.tok().span(),
+                    format!("expected `;`, found {}", self.describe_current()),
+                )
+                .with_label("expected `;`")
+                .with_secondary(prev, "the declaration before needs a `;` here");
+                self.report(d);
+            }
+            return;
+        }
         self.expected("`;`");
         self.skip_decl();
     }

@@ -395,6 +395,22 @@ impl<'a> Parser<'a> {
         self.text.as_bytes()[lo..hi].contains(&b'\n')
     }
 
+    /// Whether the previous token is a string literal its line ended
+    /// (E0003 from the lexer): the `;` it swallowed is not a second error.
+    fn after_unterminated_string(&self) -> bool {
+        let t = self.prev();
+        if !matches!(t.kind, TokenKind::SString | TokenKind::WString) {
+            return false;
+        }
+        let text = self.text_of(t);
+        let quote = if t.kind == TokenKind::SString {
+            '\''
+        } else {
+            '"'
+        };
+        text.len() < 2 || !text.ends_with(quote)
+    }
+
     fn prev(&self) -> Token {
         self.toks[self.pos.saturating_sub(1)]
     }

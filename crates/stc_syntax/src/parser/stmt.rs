@@ -60,8 +60,12 @@ impl Parser<'_> {
     /// Statements up to a token that ends the list.
     pub(crate) fn stmt_list(&mut self, in_case: bool) -> Vec<Stmt> {
         let mut out = Vec::new();
+        // Inside a CASE, a label ends the statements of a block nested in
+        // an arm too: that block was left unclosed (one error, where its
+        // END is missing, then the CASE reads on at the label).
+        let in_arm = in_case || self.open.contains(&Open::Case);
         while !self.aborted && !ends_stmt_list(self.kind()) {
-            if in_case && self.at_case_label() {
+            if in_arm && self.at_case_label() {
                 break;
             }
             let before = self.pos;
@@ -100,6 +104,9 @@ impl Parser<'_> {
             return;
         }
         if self.newline_between(self.prev(), self.tok()) {
+            if self.after_unterminated_string() {
+                return;
+            }
             let prev = self.prev().span().shrink_to_hi();
             let d = Diagnostic::new(
                 Code::E0020,
@@ -441,6 +448,9 @@ impl Parser<'_> {
             return true;
         }
         let outer = &self.open[..self.open.len().saturating_sub(1)];
+        if outer.contains(&Open::Case) && self.at_case_label() {
+            return true;
+        }
         match k {
             TokenKind::Kw(Keyword::Else) => {
                 outer.iter().any(|o| matches!(o, Open::If | Open::Case))

@@ -439,6 +439,46 @@ says which; docs/netlist.md lists what a circuit expresses.";
 circuit of more than 1 000 000 components. Make the loops shorter or the
 program smaller.";
 
+    E1301 Error "dereference of something that is not a reference"
+"The dereference `^` reads or writes the variable a reference refers to, so
+its operand must be a reference (a value of a `REF_TO T` type); `NULL`
+refers to no variable and cannot be dereferenced either. Declare the
+variable `REF_TO T`, set it with `REF(x)`, and write `r^`.";
+    E1302 Error "REF of something that is not a variable"
+"`REF(x)` takes exactly one argument, and it must name a variable (or a
+member or element of one, or what another reference refers to): the value
+of an expression, a literal, an enumeration value, a bit of a bit string
+(`w.3`) and a direct address (`%IW0`) have no address a reference could
+hold.";
+    E1303 Error "REF of a variable that does not outlive the call"
+"A reference may only refer to memory that exists as long as the program:
+globals, the variables of PROGRAM and FUNCTION_BLOCK instances, and what
+another reference refers to. The variables of a FUNCTION or METHOD, a
+VAR_TEMP and a VAR_IN_OUT (which may stand for such a variable of the
+caller) live only during one call, so a reference to them could be used
+after they are gone; stc refuses them when compiling, and only `NULL` needs
+a check when the program runs (docs/oop.md). Keep the variable in a
+FUNCTION_BLOCK or PROGRAM instance, or in a global.";
+    E1304 Error "reference type mismatch"
+"A reference of type `REF_TO T` holds `NULL` or a reference to a variable of
+exactly type `T` (`REF(x)` has type `REF_TO` the type of `x`); there is no
+conversion between references of different target types, nor between a
+reference and a value of another type. Declare the reference with the
+variable's type, or compare and assign references of the same type.";
+    E1305 Error "REF of a constant"
+"A CONSTANT variable cannot be changed, but a reference to it could be used
+to write it (`r^ := ...`). Refer to a variable that is not CONSTANT, or
+copy the constant into one.";
+    E1306 Error "reference initialised with something other than NULL"
+"A variable of a reference type starts as `NULL` (its default); it cannot
+be given another initial value in its declaration, since the variables
+that could be referred to are laid out only when the program is built.
+Assign `r := REF(x);` in the body instead.";
+    E1307 Error "operator not defined on references"
+"References can only be compared with `=` and `<>` (to each other or to
+`NULL`); they have no arithmetic, no order and no logic. Dereference them
+(`r^ + 1`) to work on the variable they refer to.";
+
     W0101 Warning "result depends on evaluation order"
 "A variable is written by an output parameter (`=>`) or VAR_IN_OUT of one call
 and read by another argument of the same enclosing call. IEC 61131-3 does not

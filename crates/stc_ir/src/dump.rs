@@ -234,6 +234,7 @@ impl Dumper<'_> {
                 self.m.spelled(g.name, g.span)
             }),
             Root::Direct(a) => a.to_string(),
+            Root::Deref(r) => format!("{}^", self.expr(r)),
         };
         for proj in &p.proj {
             match proj {
@@ -268,6 +269,8 @@ impl Dumper<'_> {
         match &e.kind {
             ExprKind::Const(v) => format!("{}:{t}", value_text(v)),
             ExprKind::Load(p) => self.place(p),
+            ExprKind::Ref(p) => format!("(ref:{t} {})", self.place(p)),
+            ExprKind::Null => format!("null:{t}"),
             ExprKind::Unary(op, x) => {
                 let o = match op {
                     UnOp::Neg => "neg",

@@ -214,6 +214,10 @@ impl Direct<'_> {
     }
 
     fn place(&mut self, p: &Place) -> bool {
+        // A dereference faults on NULL.
+        if let Root::Deref(_) = p.root {
+            return true;
+        }
         p.proj.iter().any(|pr| match pr {
             Proj::Index(idx) => idx.iter().any(|(e, lo, hi)| {
                 let checked = !matches!(e.kind, ExprKind::Const(Value::Int(_)))
@@ -246,8 +250,8 @@ impl Direct<'_> {
         let m = self.m;
         let elem = |t| m.types.scalar(t);
         match &e.kind {
-            ExprKind::Const(_) | ExprKind::CurTime => false,
-            ExprKind::Load(p) => self.place(p),
+            ExprKind::Const(_) | ExprKind::CurTime | ExprKind::Null => false,
+            ExprKind::Load(p) | ExprKind::Ref(p) => self.place(p),
             ExprKind::Unary(op, x) => unary_faults(*op, elem(x.ty)) || self.expr(x),
             ExprKind::Binary(op, x, y) => {
                 binary_faults(*op, elem(x.ty), elem(y.ty), elem(e.ty), y)

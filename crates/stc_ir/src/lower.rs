@@ -836,7 +836,9 @@ impl<'a> Lowerer<'a> {
                     None => StmtKind::Eval(value),
                 }
             }
-            CallTarget::CurTime => {
+            CallTarget::CurTime | CallTarget::Ref => {
+                // (REF never has EN/ENO: the analyser binds only its
+                // variable, so it never comes here.)
                 let value = Expr {
                     kind: ExprKind::CurTime,
                     ty,
@@ -1081,6 +1083,9 @@ impl<'a> Lowerer<'a> {
             None => self.expr_kind(e, ty),
         };
         match self.a.coercions.get(&e) {
+            // References of the same target type (NULL's type to any):
+            // the same value.
+            Some(&t) if self.a.types.ref_target(t).is_some() => Expr { ty: t, ..base },
             Some(&t) if t != ty => {
                 // Constants are converted right away.
                 if let ExprKind::Const(v) = &base.kind {
@@ -1145,10 +1150,12 @@ impl<'a> Lowerer<'a> {
                     };
                     ExprKind::Const(Value::Int(v))
                 }
+                None if self.a.types.ref_target(ty) == Some(TypeId::VOID) => ExprKind::Null,
                 _ => ExprKind::Load(self.place(e)),
             },
             AK::IlCr => ExprKind::Load(self.cr_place(ty)),
-            AK::Literal(_) | AK::EnumValue { .. } | AK::Error | AK::Deref(_) => {
+            AK::Deref(_) => ExprKind::Load(self.place(e)),
+            AK::Literal(_) | AK::EnumValue { .. } | AK::Error => {
                 ExprKind::Const(Value::Int(0))
             }
         };
@@ -1181,6 +1188,10 @@ impl<'a> Lowerer<'a> {
                 }
             }
             CallTarget::CurTime => ExprKind::CurTime,
+            CallTarget::Ref => match info.args.first().map(|a| &a.kind) {
+                Some(BoundArgKind::Input(x)) => ExprKind::Ref(self.place(*x)),
+                _ => ExprKind::Null,
+            },
             CallTarget::FbInstance(_) => ExprKind::Const(Value::Int(0)),
             CallTarget::Std { intrinsic, .. } => {
                 let values: Vec<ExprId> = info
@@ -1298,6 +1309,14 @@ impl<'a> Lowerer<'a> {
                     ty,
                 },
             },
+            AK::Deref(r) => {
+                let r = self.expr(*r);
+                Place {
+                    root: Root::Deref(Box::new(r)),
+                    proj: vec![],
+                    ty,
+                }
+            }
             AK::Member { base, .. } => {
                 let mut p = self.place(*base);
                 match self.a.resolutions.get(&e) {

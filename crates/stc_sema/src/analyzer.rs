@@ -123,6 +123,10 @@ pub(crate) struct Sema<'a> {
     /// Names declared by constructs reported as not supported (an
     /// INTERFACE...): uses of them are not reported again.
     pub unsupported_names: FxHashSet<Symbol>,
+    /// The names of the variables some `REF(...)` of the project refers to
+    /// (at the root of its argument): their values are never propagated,
+    /// since a write through a reference may change them anywhere.
+    pub ref_taken: FxHashSet<Symbol>,
     /// Operands of IL `S`/`R` that name function block instances (the
     /// instruction sets that instance's input).
     pub il_fb_inputs: FxHashSet<ExprId>,
@@ -136,6 +140,7 @@ impl<'a> Sema<'a> {
         prelude: Option<Span>,
         opts: Options,
     ) -> Sema<'a> {
+        let ref_taken = ref_taken_names(ast, interner);
         Sema {
             ast,
             interner,
@@ -169,6 +174,7 @@ impl<'a> Sema<'a> {
             partial_index_ok: None,
             global_names: FxHashSet::default(),
             unsupported_names: ast.unsupported_names.iter().map(|n| n.sym).collect(),
+            ref_taken,
             il_fb_inputs: FxHashSet::default(),
         }
     }
@@ -333,4 +339,42 @@ fn edit_distance(a: &str, b: &str) -> usize {
         prev = cur;
     }
     prev[b.len()]
+}
+
+/// The names at the root of every `REF(...)` argument of a project.
+fn ref_taken_names(ast: &Ast, interner: &Interner) -> FxHashSet<Symbol> {
+    use stc_syntax::ast::ExprKind;
+    let mut out = FxHashSet::default();
+    for e in &ast.exprs {
+        let ExprKind::Call { callee, args } = &e.kind else {
+            continue;
+        };
+        let ExprKind::Name(id) = &ast.expr(*callee).kind else {
+            continue;
+        };
+        if interner.key(id.sym) != "REF" {
+            continue;
+        }
+        for a in args.iter() {
+            let mut x = match &a.kind {
+                stc_syntax::ast::ArgKind::Positional(v)
+                | stc_syntax::ast::ArgKind::Input { value: v, .. } => *v,
+                stc_syntax::ast::ArgKind::Output { target, .. } => *target,
+            };
+            loop {
+                match &ast.expr(x).kind {
+                    ExprKind::Paren(b) | ExprKind::Member { base: b, .. } => x = *b,
+                    ExprKind::Index { base, .. } | ExprKind::PartialAccess { base, .. } => {
+                        x = *base
+                    }
+                    ExprKind::Name(n) => {
+                        out.insert(n.sym);
+                        break;
+                    }
+                    _ => break,
+                }
+            }
+        }
+    }
+    out
 }

@@ -126,17 +126,39 @@ impl<'a> Sema<'a> {
                     return TypeId::ERROR;
                 }
                 if key == "REF" {
-                    // The 3rd-edition reference operator, like REF_TO.
-                    self.emit(
-                        Diagnostic::new(
-                            Code::E0030,
-                            id.span,
-                            "the reference operator `REF` is not supported yet",
-                        )
-                        .with_label("not supported yet"),
-                    );
-                    self.loose_args(args, scope);
-                    return TypeId::ERROR;
+                    // The 3rd-edition reference operator.
+                    let [Arg {
+                        kind: ArgKind::Positional(x),
+                        ..
+                    }] = args
+                    else {
+                        self.emit(
+                            Diagnostic::new(
+                                Code::E1302,
+                                span,
+                                "REF takes one argument: the variable it refers to",
+                            )
+                            .with_label("`REF(x)`"),
+                        );
+                        self.loose_args(args, scope);
+                        return TypeId::ERROR;
+                    };
+                    let t = self.ref_of(*x, scope);
+                    if t != TypeId::ERROR {
+                        self.calls.insert(
+                            e,
+                            CallInfo {
+                                target: CallTarget::Ref,
+                                args: vec![BoundArg {
+                                    param: 0,
+                                    kind: BoundArgKind::Input(*x),
+                                }],
+                                en: None,
+                                eno: None,
+                            },
+                        );
+                    }
+                    return t;
                 }
                 if self.unsupported_names.contains(&id.sym) {
                     // A POU reported as not supported (a generic function):
@@ -1249,9 +1271,12 @@ impl<'a> Sema<'a> {
                     root = *base
                 }
                 ExprKind::Index { base, .. } => root = *base,
-                // `p^ := v` and a target that did not parse: reported
-                // already; the names in it are still resolved.
-                ExprKind::Deref(_) | ExprKind::Error | ExprKind::IlCr => {
+                // `r^ := v`: the variable a reference refers to (its
+                // errors are the dereference's).
+                ExprKind::Deref(_) => return self.check_expr(target, None, scope),
+                // A target that did not parse: reported already; the names
+                // in it are still resolved.
+                ExprKind::Error | ExprKind::IlCr => {
                     self.check_expr(target, Some(TypeId::ERROR), scope);
                     return TypeId::ERROR;
                 }

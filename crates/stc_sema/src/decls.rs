@@ -636,6 +636,13 @@ impl<'a> Sema<'a> {
                     None,
                 )
             }
+            TypeSpecKind::Ref(target) => {
+                let (t, _) = self.resolve_type_spec(target, scope, None);
+                if t == TypeId::ERROR {
+                    return (TypeId::ERROR, None);
+                }
+                (self.types.ref_to(t), None)
+            }
         }
     }
 
@@ -690,6 +697,27 @@ impl<'a> Sema<'a> {
             // Still check the expressions, for their own errors.
             if let InitKind::Expr(e) = &init.kind {
                 self.check_expr(*e, None, scope);
+            }
+            return None;
+        }
+        if matches!(self.types.kind(ty), TypeKind::Ref(_)) {
+            // A reference starts as NULL; no other initial value.
+            let is_null = match &init.kind {
+                InitKind::Expr(e) => {
+                    let t = self.check_expr(*e, Some(ty), scope);
+                    t == TypeId::ERROR || self.types.ref_target(t) == Some(TypeId::VOID)
+                }
+                _ => false,
+            };
+            if !is_null {
+                self.emit(
+                    Diagnostic::new(
+                        Code::E1306,
+                        init.span,
+                        "a reference can only be initialised with NULL",
+                    )
+                    .with_help("assign `r := REF(x);` in the body"),
+                );
             }
             return None;
         }

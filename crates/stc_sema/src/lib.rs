@@ -264,6 +264,8 @@ pub enum CallTarget {
     },
     /// The task clock (`CUR_TIME()`).
     CurTime,
+    /// `REF(x)`: the reference to its one argument, a variable.
+    Ref,
 }
 
 #[derive(Clone, Debug)]

@@ -106,9 +106,7 @@ pub enum ExprKind {
     },
     /// `( inner )`, kept so the printer can reproduce the source.
     Paren(ExprId),
-    /// `base^`: a pointer or reference dereference, a dialect feature
-    /// already reported as not supported (E0030). The base is kept so the
-    /// variable it names counts as used.
+    /// `base^`: the dereference of a 3rd-edition reference (`REF_TO`).
     Deref(ExprId),
     /// The current result of an Instruction List body (see [`IlInstr`]):
     /// never written by users, made by the parser where an IL instruction
@@ -368,6 +366,8 @@ pub enum TypeSpecKind {
     Struct {
         members: Vec<VarDecl>,
     },
+    /// `REF_TO T`: a reference to a variable of type `T` (3rd edition).
+    Ref(Box<TypeSpec>),
 }
 
 #[derive(Clone, PartialEq, Debug)]

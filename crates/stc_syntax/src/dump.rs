@@ -429,6 +429,7 @@ impl Dumper<'_> {
                 format!("ARRAY[{}] OF {}", ds.join(", "), self.type_text(elem))
             }
             TypeSpecKind::Struct { members } => format!("STRUCT ({} members)", members.len()),
+            TypeSpecKind::Ref(target) => format!("REF_TO {}", self.type_text(target)),
         }
     }
 

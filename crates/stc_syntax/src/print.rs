@@ -477,6 +477,7 @@ impl Printer<'_> {
                 s.push_str("END_STRUCT");
                 s
             }
+            TypeSpecKind::Ref(target) => format!("REF_TO {}", self.type_text(target)),
         }
     }
 

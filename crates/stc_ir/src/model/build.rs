@@ -305,6 +305,13 @@ impl<'a> Builder<'a> {
             return r;
         }
         let desc = match self.m.types.kind(t).clone() {
+            // A reference's address is an engine's own: the model shows it
+            // as an opaque value with no member (`{}` in reports), the same
+            // on every engine.
+            TypeKind::Ref(_) => TypeDesc::Struct {
+                name: Some(ref_name(self.m, t)),
+                fields: Vec::new(),
+            },
             TypeKind::Elem(e) => TypeDesc::Scalar(e),
             TypeKind::Subrange { base, lo, hi } => TypeDesc::Subrange { base, lo, hi },
             TypeKind::String { wide, len } => TypeDesc::String { wide, cap: len },
@@ -444,6 +451,8 @@ impl<'a> Builder<'a> {
         ctx: Option<(usize, usize)>,
     ) {
         match self.m.types.kind(t).clone() {
+            // A reference starts as NULL: the zero bytes already there.
+            TypeKind::Ref(_) => {}
             TypeKind::Elem(_)
             | TypeKind::Subrange { .. }
             | TypeKind::Enum { .. }
@@ -751,5 +760,26 @@ impl<'a> Builder<'a> {
             });
         }
         self.model.pous[p.index()].vars = vars;
+    }
+}
+
+/// The name a reference type is shown with in the model (`REF_TO INT`).
+fn ref_name(m: &Module, t: TypeId) -> String {
+    match m.types.kind(t) {
+        TypeKind::Ref(x) if *x == TypeId::VOID => "NULL".into(),
+        TypeKind::Ref(x) => {
+            let inner = match m.type_name(*x) {
+                Some(n) => n.to_string(),
+                None => match m.types.kind(*x) {
+                    TypeKind::Elem(e) => e.name().to_string(),
+                    TypeKind::Ref(_) => ref_name(m, *x),
+                    TypeKind::String { wide: false, .. } => "STRING".into(),
+                    TypeKind::String { wide: true, .. } => "WSTRING".into(),
+                    _ => "?".into(),
+                },
+            };
+            format!("REF_TO {inner}")
+        }
+        _ => String::new(),
     }
 }

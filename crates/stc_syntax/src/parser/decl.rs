@@ -693,9 +693,8 @@ impl Parser<'_> {
                     ) =>
             {
                 self.bump();
-                self.unsupported(t.span(), "references (REF_TO) are");
-                self.type_spec();
-                TypeSpecKind::Error
+                let target = self.type_spec();
+                TypeSpecKind::Ref(Box::new(target))
             }
             // `UNION` followed by its first member (or its end), not a type
             // named Union.

@@ -14,6 +14,10 @@ use crate::layout::{Layouts, MAX_SIZE};
 use crate::{Module, Place, Root, Storage};
 use stc_sema::idx::Idx;
 
+/// The bytes at address 0 left unused in the data area of a program that
+/// has references, so that 0 is the address of no variable: NULL.
+pub const NULL_GUARD: u32 = 8;
+
 /// Why no model was built.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ModelError {
@@ -131,7 +135,15 @@ impl<'a> Builder<'a> {
             self.model.types.push(TypeDesc::Instance { pou: i as u32 });
             self.model.pous[i].instance_type = t;
         }
-        // Data: process image, globals, program instances.
+        // Data: process image, globals, program instances. A program with
+        // references keeps address 0 free, so no variable has the address
+        // of NULL (the first 8 bytes of its data area are never used).
+        let m = self.m;
+        let has_refs = (0..m.types.len() as u32)
+            .any(|t| matches!(m.types.kind(TypeId(t)), TypeKind::Ref(_)));
+        if has_refs {
+            self.data.resize(NULL_GUARD as usize, 0);
+        }
         self.collect_io();
         // Located variables' initial values, once per slot.
         let m = self.m;

@@ -478,6 +478,13 @@ Assign `r := REF(x);` in the body instead.";
 "References can only be compared with `=` and `<>` (to each other or to
 `NULL`); they have no arithmetic, no order and no logic. Dereference them
 (`r^ + 1`) to work on the variable they refer to.";
+    E1308 Error "reference in a RETAIN variable"
+"RETAIN variables keep their values over a warm restart, but the address a
+reference holds does not stay valid when the program is loaded again (the
+generated C places its variables anew). A RETAIN variable, or a RETAIN
+instance, array or structure, cannot contain a reference. Declare the
+reference in a VAR block without RETAIN and set it again after the
+restart.";
 
     W0101 Warning "result depends on evaluation order"
 "A variable is written by an output parameter (`=>`) or VAR_IN_OUT of one call

@@ -2789,6 +2789,182 @@ done:
 END_FUNCTION
 ",
     ),
+    (
+        Code::E1301,
+        r"PROGRAM Main
+VAR
+    x : INT;
+    y : INT;
+END_VAR
+    y := x^;   // E1301
+END_PROGRAM
+",
+        r"PROGRAM Main
+VAR
+    x : INT;
+    r : REF_TO INT;
+    y : INT;
+END_VAR
+    r := REF(x);
+    y := r^;
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1302,
+        r"PROGRAM Main
+VAR
+    x : INT;
+    r : REF_TO INT;
+END_VAR
+    r := REF(x + 1);   // E1302
+    r^ := 0;
+END_PROGRAM
+",
+        r"PROGRAM Main
+VAR
+    x : INT;
+    r : REF_TO INT;
+END_VAR
+    r := REF(x);
+    r^ := 0;
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1303,
+        r"FUNCTION Scale : INT
+VAR
+    tmp : INT;
+    r : REF_TO INT;
+END_VAR
+    r := REF(tmp);   // E1303
+    Scale := r^;
+END_FUNCTION
+",
+        r"FUNCTION_BLOCK Scale
+VAR_OUTPUT
+    out : INT;
+END_VAR
+VAR
+    tmp : INT;
+    r : REF_TO INT;
+END_VAR
+    r := REF(tmp);
+    out := r^;
+END_FUNCTION_BLOCK
+",
+    ),
+    (
+        Code::E1304,
+        r"PROGRAM Main
+VAR
+    d : DINT;
+    r : REF_TO INT;
+END_VAR
+    r := REF(d);   // E1304
+    r^ := 1;
+END_PROGRAM
+",
+        r"PROGRAM Main
+VAR
+    d : DINT;
+    r : REF_TO DINT;
+END_VAR
+    r := REF(d);
+    r^ := 1;
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1305,
+        r"PROGRAM Main
+VAR CONSTANT
+    limit : INT := 10;
+END_VAR
+VAR
+    r : REF_TO INT;
+END_VAR
+    r := REF(limit);   // E1305
+    r^ := 0;
+END_PROGRAM
+",
+        r"PROGRAM Main
+VAR
+    limit : INT := 10;
+    r : REF_TO INT;
+END_VAR
+    r := REF(limit);
+    r^ := 0;
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1306,
+        r"PROGRAM Main
+VAR
+    x : INT;
+    r : REF_TO INT := REF(x);   // E1306
+END_VAR
+    r^ := 1;
+END_PROGRAM
+",
+        r"PROGRAM Main
+VAR
+    x : INT;
+    r : REF_TO INT := NULL;
+END_VAR
+    r := REF(x);
+    r^ := 1;
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1307,
+        r"PROGRAM Main
+VAR
+    x : INT;
+    r : REF_TO INT;
+    y : INT;
+END_VAR
+    r := REF(x);
+    y := r + 1;   // E1307
+END_PROGRAM
+",
+        r"PROGRAM Main
+VAR
+    x : INT;
+    r : REF_TO INT;
+    y : INT;
+END_VAR
+    r := REF(x);
+    y := r^ + 1;
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1308,
+        r"PROGRAM Main
+VAR RETAIN
+    r : REF_TO INT;   // E1308
+END_VAR
+VAR
+    x : INT;
+END_VAR
+    r := REF(x);
+    r^ := 1;
+END_PROGRAM
+",
+        r"PROGRAM Main
+VAR
+    r : REF_TO INT;
+    x : INT;
+END_VAR
+    r := REF(x);
+    r^ := 1;
+END_PROGRAM
+",
+    ),
 ];
 
 #[cfg(test)]

@@ -1023,6 +1023,9 @@ impl<'a> Sema<'a> {
             }
             _ => {}
         }
+        if var.retain && self.type_has_ref(var.ty, 0) {
+            self.retained_ref(var.span);
+        }
         if let Some(loc) = &src.decl.location {
             if pou_kind == PouKind::Function {
                 self.error(
@@ -1034,6 +1037,43 @@ impl<'a> Sema<'a> {
                 self.check_location(loc.span, &loc.address, var.ty);
             }
         }
+    }
+
+    /// Whether a value of type `t` holds a reference (in an element, a
+    /// member or a variable of an instance).
+    pub(crate) fn type_has_ref(&mut self, t: TypeId, depth: u32) -> bool {
+        if depth > 64 {
+            return false;
+        }
+        match self.types.kind(t).clone() {
+            TypeKind::Ref(_) => true,
+            TypeKind::Array { elem, .. } => self.type_has_ref(elem, depth + 1),
+            TypeKind::Struct { fields } => fields.iter().any(|f| self.type_has_ref(f.ty, depth + 1)),
+            TypeKind::Fb(q) => {
+                let n = self.pous[q.0 as usize].vars.len();
+                (0..n).any(|i| {
+                    let v = crate::VarId(i as u32);
+                    self.ensure_var(q, v);
+                    let ty = self.pous[q.0 as usize].var(v).ty;
+                    self.type_has_ref(ty, depth + 1)
+                })
+            }
+            _ => false,
+        }
+    }
+
+    /// E1308 at a RETAIN variable that holds a reference.
+    fn retained_ref(&mut self, span: Span) {
+        self.emit(
+            Diagnostic::new(
+                Code::E1308,
+                span,
+                "a RETAIN variable cannot hold a reference",
+            )
+            .with_help(
+                "an address does not survive a restart: keep references out of RETAIN variables",
+            ),
+        );
     }
 
     /// The element type of (nested) arrays.
@@ -1150,6 +1190,9 @@ impl<'a> Sema<'a> {
         }
         if let Some(loc) = &src.decl.location {
             self.check_location(loc.span, &loc.address, ty);
+        }
+        if self.globals[gi].var.retain && self.type_has_ref(ty, 0) {
+            self.retained_ref(self.globals[gi].var.span);
         }
         let var = &mut self.globals[gi].var;
         var.ty = ty;

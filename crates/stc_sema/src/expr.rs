@@ -274,7 +274,7 @@ impl<'a> Sema<'a> {
                 Diagnostic::new(
                     Code::E1307,
                     span,
-                    "references can only be compared with `=` and `<>`",
+                    "references have no operator but `=` and `<>`",
                 )
                 .with_help("dereference them (`r^`) to work on what they refer to"),
             );

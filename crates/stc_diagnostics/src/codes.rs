@@ -485,6 +485,37 @@ generated C places its variables anew). A RETAIN variable, or a RETAIN
 instance, array or structure, cannot contain a reference. Declare the
 reference in a VAR block without RETAIN and set it again after the
 restart.";
+    E1309 Error "OVERRIDE without a base method"
+"A METHOD declared OVERRIDE replaces the method of the same name of the
+function block it EXTENDS. This function block extends none (inheritance
+is not supported yet), so there is nothing to override. Remove OVERRIDE.";
+    E1310 Error "unknown method"
+"`inst.m(...)` calls the METHOD `m` of the function block of `inst`, which
+declares no method (and no instance variable) of that name. Check the
+spelling, or declare the method inside the FUNCTION_BLOCK (after its
+variables, before its body).";
+    E1311 Error "method not accessible here"
+"A METHOD declared PRIVATE (or PROTECTED, which without inheritance means
+the same) can only be called from its own function block: from its body or
+its other methods (`m()` or `THIS^.m()`). Call a PUBLIC method from
+outside, or declare this one PUBLIC.";
+    E1312 Error "THIS outside a function block"
+"`THIS` is the reference to the instance of the FUNCTION_BLOCK whose body or
+METHOD is running; a FUNCTION, a PROGRAM or a declaration has no instance.
+Pass the instance (or a reference to it) as a parameter instead.";
+    E1313 Error "SUPER without a base"
+"`SUPER^` is the part of the instance that a function block inherits from
+the one it EXTENDS. This function block extends none (inheritance is not
+supported yet). Call the method of this block itself, `THIS^.m()`.";
+    E1314 Error "ABSTRACT method in a function block that is not ABSTRACT"
+"An ABSTRACT method has no body: a derived function block must implement
+it, and only an ABSTRACT function block (never instantiated) may declare
+one. ABSTRACT function blocks and inheritance are not supported yet; give
+the method a body and remove ABSTRACT.";
+    E1315 Error "method name already used"
+"Two METHODs of one function block have the same name, or a method has the
+name of one of the block's variables, so `inst.m` would be ambiguous.
+Rename one of them.";
 
     W0101 Warning "result depends on evaluation order"
 "A variable is written by an output parameter (`=>`) or VAR_IN_OUT of one call

@@ -1127,6 +1127,8 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                     .ok_or_else(|| internal(format!("{a} without a process image slot")))?;
                 self.iconst(I64, i64::from(o))
             }
+            // The running function block's instance.
+            Root::This => self.this,
             Root::Deref(r) => {
                 // The address, checked not to be NULL (as the VM does).
                 let v = self.expr_s(r)?;
@@ -1141,6 +1143,7 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
             Root::Global(g) => m.globals[*g].ty,
             Root::Direct(a) => m.addr_type(a),
             Root::Deref(r) => m.types.ref_target(r.ty).unwrap_or(TypeId::ERROR),
+            Root::This => p.ty,
         };
         let mut part = None;
         for proj in &p.proj {

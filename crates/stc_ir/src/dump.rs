@@ -235,6 +235,7 @@ impl Dumper<'_> {
             }),
             Root::Direct(a) => a.to_string(),
             Root::Deref(r) => format!("{}^", self.expr(r)),
+            Root::This => "THIS^".to_string(),
         };
         for proj in &p.proj {
             match proj {

@@ -472,6 +472,10 @@ pub enum Root {
     Var(VarId),
     Global(GlobalId),
     Direct(DirectAddress),
+    /// The instance of the FUNCTION_BLOCK whose body runs (`THIS^` in its
+    /// body; a METHOD reaches its instance through its hidden in-out
+    /// variable instead). Only in the body of a function block.
+    This,
     /// What a reference refers to (`r^`): the expression, of a reference
     /// type, is evaluated, and a NULL reference is the fault
     /// [`FaultKind::NullReference`].

@@ -1202,6 +1202,9 @@ impl<'m> Tr<'m> {
             Root::Deref(_) => {
                 return Err(self.refuse(fr, Code::E1105, "a dereference (`r^`)"));
             }
+            Root::This => {
+                return Err(self.refuse(fr, Code::E1105, "`THIS` (a method call)"));
+            }
             Root::Global(g) => Loc::Fixed(self.global(*g)),
             Root::Direct(a) => Loc::Fixed(self.direct(a, p.ty, None)),
         };

@@ -192,9 +192,19 @@ impl<'a> Sema<'a> {
         }
         self.collect_configs();
         self.global_names = self.globals.iter().map(|g| g.var.name).collect();
+        // A function block's methods before its own body, so that what
+        // they use of the instance is known to its warnings.
         for id in 0..self.pous.len() {
             let id = PouId(id as u32);
-            if let Item::Pou(p) = &self.ast.items[self.pous[id.0 as usize].item] {
+            if self.pous[id.0 as usize].method_of.is_some() {
+                continue;
+            }
+            for m in self.pous[id.0 as usize].methods.clone() {
+                if let Some(src) = self.pou_ast(m) {
+                    self.check_body(m, src);
+                }
+            }
+            if let Some(p) = self.pou_ast(id) {
                 self.check_body(id, p);
             }
         }
@@ -297,7 +307,11 @@ impl<'a> Sema<'a> {
 
     /// The syntax of a POU.
     pub fn pou_ast(&self, p: PouId) -> Option<&'a stc_syntax::ast::Pou> {
-        match self.ast.items.get(self.pous.get(p.0 as usize)?.item)? {
+        let def = self.pous.get(p.0 as usize)?;
+        if let Some((owner, k)) = def.method_of {
+            return self.pou_ast(owner)?.methods.get(k).map(|m| &m.pou);
+        }
+        match self.ast.items.get(def.item)? {
             Item::Pou(pou) => Some(pou),
             _ => None,
         }

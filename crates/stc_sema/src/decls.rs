@@ -123,85 +123,10 @@ impl<'a> Sema<'a> {
                             );
                         }
                     }
-                    let mut def = PouDef {
-                        kind: p.kind,
-                        name: p.name.sym,
-                        span: p.span,
-                        name_span: p.name.span,
-                        item: i,
-                        vars: Vec::new(),
-                        return_type: None,
-                        is_std: self.in_prelude(p.span),
-                        var_index: FxHashMap::default(),
-                        en: None,
-                        eno: None,
-                    };
-                    let mut src = Vec::new();
-                    if p.kind == PouKind::Function && p.return_type.is_some() {
-                        def.vars.push(VarDef {
-                            name: p.name.sym,
-                            span: p.name.span,
-                            section: Section::Result,
-                            ty: TypeId::ERROR,
-                            init: None,
-                            constant: false,
-                            retain: false,
-                            location: None,
-                            edge: None,
-                            implicit: false,
-                        });
-                        def.var_index.insert(p.name.sym, VarId(0));
-                        src.push(None);
+                    let fb = self.collect_pou(i, p, None);
+                    for (k, m) in p.methods.iter().enumerate() {
+                        self.collect_method(i, fb, k, m);
                     }
-                    for block in &p.var_blocks {
-                        let VarBlockItems::Vars(decls) = &block.items else {
-                            continue;
-                        };
-                        for decl in decls {
-                            for name in &decl.names {
-                                let v = VarId(def.vars.len() as u32);
-                                if let Some(prev) = def.var_index.get(&name.sym) {
-                                    let first = def.vars[prev.0 as usize].span;
-                                    let shown = self.spelled(name.sym, name.span);
-                                    let d = Diagnostic::new(
-                                        Code::E0105,
-                                        name.span,
-                                        format!(
-                                            "`{shown}` is declared twice in `{}`",
-                                            self.sym_name(p.name.sym)
-                                        ),
-                                    )
-                                    .with_label("declared again here")
-                                    .with_secondary(first, "first declared here");
-                                    self.emit(d);
-                                    continue;
-                                }
-                                def.var_index.insert(name.sym, v);
-                                def.vars.push(VarDef {
-                                    name: name.sym,
-                                    span: name.span,
-                                    section: section_of(block.kind),
-                                    ty: TypeId::ERROR,
-                                    init: None,
-                                    constant: block.constant,
-                                    retain: block.retention
-                                        == Some(stc_syntax::ast::Retention::Retain),
-                                    location: decl.location.as_ref().map(|l| l.address.clone()),
-                                    edge: decl.edge,
-                                    implicit: false,
-                                });
-                                src.push(Some(VarSource { block, decl }));
-                            }
-                        }
-                    }
-                    if matches!(p.kind, PouKind::Function | PouKind::FunctionBlock) {
-                        self.add_execution_control(&mut def, &mut src);
-                    }
-                    let n = def.vars.len();
-                    self.pous.push(def);
-                    self.pou_var_src.push(src);
-                    self.pou_var_state.push(vec![State::Todo; n]);
-                    self.pou_state.push(State::Todo);
                 }
                 Item::Configuration(c) => {
                     self.register(c.name, GlobalName::Config(i));
@@ -212,6 +137,172 @@ impl<'a> Sema<'a> {
                 }
             }
         }
+    }
+
+    /// Registers METHOD `k` of function block `fb` as a POU of its own and
+    /// checks its modifiers and name.
+    fn collect_method(&mut self, i: usize, fb: PouId, k: usize, m: &'a stc_syntax::ast::Method) {
+        let name = m.pou.name;
+        let shown = self.spelled(name.sym, name.span);
+        let clash = self.pous[fb.0 as usize]
+            .methods
+            .iter()
+            .find(|q| self.pous[q.0 as usize].name == name.sym)
+            .map(|q| self.pous[q.0 as usize].name_span);
+        if let Some(first) = clash {
+            self.emit(
+                Diagnostic::new(Code::E1315, name.span, format!("method `{shown}` is declared twice"))
+                    .with_secondary(first, "first declared here"),
+            );
+        } else if let Some(v) = self.pous[fb.0 as usize].lookup(name.sym) {
+            let first = self.pous[fb.0 as usize].var(v).span;
+            self.emit(
+                Diagnostic::new(
+                    Code::E1315,
+                    name.span,
+                    format!("method `{shown}` has the name of a variable of its function block"),
+                )
+                .with_secondary(first, "the variable"),
+            );
+        }
+        if m.is_override {
+            self.emit(
+                Diagnostic::new(
+                    Code::E1309,
+                    name.span,
+                    format!("`{shown}` overrides no method: its function block extends none"),
+                )
+                .with_help("remove OVERRIDE"),
+            );
+        }
+        if m.is_abstract {
+            self.emit(
+                Diagnostic::new(
+                    Code::E1314,
+                    name.span,
+                    format!("the ABSTRACT method `{shown}` belongs to a function block that is not ABSTRACT"),
+                )
+                .with_help("give the method a body and remove ABSTRACT"),
+            );
+        }
+        let mid = self.collect_pou(i, &m.pou, Some((fb, k)));
+        self.pous[mid.0 as usize].access = m.access;
+        self.pous[fb.0 as usize].methods.push(mid);
+    }
+
+    /// Registers the variables of a POU (or of a METHOD of function block
+    /// `method_of`, which also gets its hidden THIS) as a new POU.
+    fn collect_pou(
+        &mut self,
+        i: usize,
+        p: &'a stc_syntax::ast::Pou,
+        method_of: Option<(PouId, usize)>,
+    ) -> PouId {
+        let id = PouId(self.pous.len() as u32);
+        let mut def = PouDef {
+            kind: p.kind,
+            name: p.name.sym,
+            span: p.span,
+            name_span: p.name.span,
+            item: i,
+            vars: Vec::new(),
+            return_type: None,
+            is_std: self.in_prelude(p.span),
+            var_index: FxHashMap::default(),
+            en: None,
+            eno: None,
+            method_of,
+            this: None,
+            access: None,
+            methods: Vec::new(),
+        };
+        let mut src = Vec::new();
+        if p.kind == PouKind::Function && p.return_type.is_some() {
+            def.vars.push(VarDef {
+                name: p.name.sym,
+                span: p.name.span,
+                section: Section::Result,
+                ty: TypeId::ERROR,
+                init: None,
+                constant: false,
+                retain: false,
+                location: None,
+                edge: None,
+                implicit: false,
+            });
+            def.var_index.insert(p.name.sym, VarId(0));
+            src.push(None);
+        }
+        for block in &p.var_blocks {
+            let VarBlockItems::Vars(decls) = &block.items else {
+                continue;
+            };
+            for decl in decls {
+                for name in &decl.names {
+                    let v = VarId(def.vars.len() as u32);
+                    if let Some(prev) = def.var_index.get(&name.sym) {
+                        let first = def.vars[prev.0 as usize].span;
+                        let shown = self.spelled(name.sym, name.span);
+                        let d = Diagnostic::new(
+                            Code::E0105,
+                            name.span,
+                            format!(
+                                "`{shown}` is declared twice in `{}`",
+                                self.sym_name(p.name.sym)
+                            ),
+                        )
+                        .with_label("declared again here")
+                        .with_secondary(first, "first declared here");
+                        self.emit(d);
+                        continue;
+                    }
+                    def.var_index.insert(name.sym, v);
+                    def.vars.push(VarDef {
+                        name: name.sym,
+                        span: name.span,
+                        section: section_of(block.kind),
+                        ty: TypeId::ERROR,
+                        init: None,
+                        constant: block.constant,
+                        retain: block.retention
+                            == Some(stc_syntax::ast::Retention::Retain),
+                        location: decl.location.as_ref().map(|l| l.address.clone()),
+                        edge: decl.edge,
+                        implicit: false,
+                    });
+                    src.push(Some(VarSource { block, decl }));
+                }
+            }
+        }
+        if let Some((fb, _)) = method_of {
+            // The instance the method runs on: a reference, bound by every
+            // call (no EN/ENO: a method call is not gated).
+            let this = VarId(def.vars.len() as u32);
+            let ty = self.pou_type(fb);
+            let sym = self.intern("THIS");
+            def.vars.push(VarDef {
+                name: sym,
+                span: def.name_span,
+                section: Section::InOut,
+                ty,
+                init: None,
+                constant: false,
+                retain: false,
+                location: None,
+                edge: None,
+                implicit: true,
+            });
+            def.this = Some(this);
+            src.push(None);
+        } else if matches!(p.kind, PouKind::Function | PouKind::FunctionBlock) {
+            self.add_execution_control(&mut def, &mut src);
+        }
+        let n = def.vars.len();
+        self.pous.push(def);
+        self.pou_var_src.push(src);
+        self.pou_var_state.push(vec![State::Todo; n]);
+        self.pou_state.push(State::Todo);
+        id
     }
 
     /// EN and ENO (ed2 2.5.1.2): every function and function block has the
@@ -898,8 +989,7 @@ impl<'a> Sema<'a> {
         let scope = Scope::Pou(p);
         let Some(src) = self.pou_var_src[pi][vi] else {
             // A function's result variable.
-            let item = self.pous[pi].item;
-            if let Item::Pou(pou) = &self.ast.items[item] {
+            if let Some(pou) = self.pou_ast(p) {
                 if let Some(rt) = &pou.return_type {
                     let (t, init) = self.resolve_type_spec(rt, scope, None);
                     if matches!(self.types.kind(t), TypeKind::Fb(_) | TypeKind::Program(_)) {

@@ -15,7 +15,7 @@ use stc_values::{BinOp, UnOp, Value};
 
 use crate::analyzer::{GlobalName, Scope, Sema};
 use crate::types::{Compat, InitValue, TypeId, TypeKind};
-use crate::{GlobalId, GlobalOwner, Res, Section};
+use crate::{GlobalId, GlobalOwner, PouId, Res, Section};
 
 /// The context of a conversion, which decides the diagnostic code.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
@@ -142,6 +142,68 @@ impl<'a> Sema<'a> {
                 t
             }
         }
+    }
+
+    // ----- instances and methods --------------------------------------------
+
+    /// The function block whose instance runs a POU's code: the block
+    /// itself, or the block a METHOD belongs to.
+    pub(crate) fn own_fb(&self, p: PouId) -> Option<PouId> {
+        let def = &self.pous[p.0 as usize];
+        match def.method_of {
+            Some((fb, _)) => Some(fb),
+            None if def.kind == stc_syntax::ast::PouKind::FunctionBlock => Some(p),
+            None => None,
+        }
+    }
+
+    /// The METHOD `name` of function block `fb`.
+    pub(crate) fn find_method(&self, fb: PouId, name: stc_syntax::Symbol) -> Option<PouId> {
+        self.pous[fb.0 as usize]
+            .methods
+            .iter()
+            .copied()
+            .find(|m| self.pous[m.0 as usize].name == name)
+    }
+
+    /// A name in POU `p` that is not one of its own variables: `THIS`,
+    /// `SUPER`, or in a METHOD a variable of its function block (the
+    /// instance's, through `THIS`).
+    fn instance_name(&mut self, e: ExprId, id: Ident, p: PouId) -> Option<TypeId> {
+        let key = self.interner.key(id.sym);
+        if key == "THIS" {
+            let Some(fb) = self.own_fb(p) else {
+                self.emit(
+                    Diagnostic::new(
+                        Code::E1312,
+                        id.span,
+                        "`THIS` is only defined in a FUNCTION_BLOCK and its methods",
+                    )
+                    .with_label("no instance here"),
+                );
+                return Some(TypeId::ERROR);
+            };
+            self.resolutions.insert(e, Res::This);
+            let t = self.pou_type(fb);
+            return Some(self.types.ref_to(t));
+        }
+        if key == "SUPER" {
+            self.emit(
+                Diagnostic::new(
+                    Code::E1313,
+                    id.span,
+                    "`SUPER` refers to the base of a function block, and this one extends none",
+                )
+                .with_help("call the method of this block: `THIS^.m()`"),
+            );
+            return Some(TypeId::ERROR);
+        }
+        let (fb, _) = self.pous[p.0 as usize].method_of?;
+        let v = self.pous[fb.0 as usize].lookup(id.sym)?;
+        self.ensure_var(fb, v);
+        self.resolutions.insert(e, Res::FbMember(fb, v));
+        self.used.insert((fb, v));
+        Some(self.pous[fb.0 as usize].var(v).ty)
     }
 
     // ----- references -------------------------------------------------------
@@ -697,6 +759,9 @@ impl<'a> Sema<'a> {
                         }
                     }
                     return var.ty;
+                }
+                if let Some(t) = self.instance_name(e, id, p) {
+                    return t;
                 }
                 if self.in_type_constant {
                     let top = self.globals.iter().position(|g| {

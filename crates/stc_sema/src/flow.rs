@@ -4,7 +4,7 @@
 
 use rustc_hash::{FxHashMap, FxHashSet};
 use stc_diagnostics::{Code, Diagnostic, Span};
-use stc_syntax::ast::{Arg, ArgKind, ExprId, ExprKind, Item, Pou, PouKind, Stmt, StmtKind};
+use stc_syntax::ast::{Arg, ArgKind, ExprId, ExprKind, Pou, PouKind, Stmt, StmtKind};
 
 use crate::analyzer::{GlobalName, Scope, Sema};
 use crate::types::TypeKind;
@@ -581,10 +581,9 @@ impl<'a> Sema<'a> {
     /// outputs) are the POU's API and are not reported.
     fn check_hidden_globals(&mut self, contexts: &[Vec<(usize, usize, Span)>]) {
         for (pi, ctx) in contexts.iter().enumerate() {
-            let partial = match &self.ast.items[self.pous[pi].item] {
-                Item::Pou(ast_pou) => ast_pou.partial,
-                _ => false,
-            };
+            let partial = self
+                .pou_ast(crate::PouId(pi as u32))
+                .is_some_and(|a| a.partial);
             if self.pous[pi].is_std || partial {
                 continue;
             }
@@ -627,9 +626,6 @@ impl<'a> Sema<'a> {
             edges.entry(a).or_default().push((b, s));
         }
         for (pi, pou) in self.pous.iter().enumerate() {
-            if let Item::Pou(ast_pou) = &self.ast.items[pou.item] {
-                let _ = ast_pou;
-            }
             for v in &pou.vars {
                 if v.section == Section::External || v.section == Section::InOut {
                     continue;

@@ -586,6 +586,42 @@ pub struct Pou {
     /// whether the result is assigned is not known: the warnings that
     /// depend on it (W0104, W0106) are not given.
     pub partial: bool,
+    /// The METHODs of a FUNCTION_BLOCK (3rd edition), in source order.
+    pub methods: Vec<Method>,
+}
+
+/// A METHOD of a FUNCTION_BLOCK: a function of its instance, which reads
+/// and writes the instance's variables (and `THIS`).
+#[derive(Clone, PartialEq, Debug)]
+pub struct Method {
+    /// The method as a POU of kind FUNCTION: its name, result type,
+    /// variables and body (`methods` is empty).
+    pub pou: Pou,
+    /// The access specifier as written (`None`: PUBLIC by default).
+    pub access: Option<Access>,
+    pub is_abstract: bool,
+    pub is_final: bool,
+    pub is_override: bool,
+}
+
+/// An access specifier of a METHOD.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Access {
+    Public,
+    Private,
+    Protected,
+    Internal,
+}
+
+impl Access {
+    pub fn keyword(self) -> &'static str {
+        match self {
+            Access::Public => "PUBLIC",
+            Access::Private => "PRIVATE",
+            Access::Protected => "PROTECTED",
+            Access::Internal => "INTERNAL",
+        }
+    }
 }
 
 #[derive(Clone, PartialEq, Debug)]

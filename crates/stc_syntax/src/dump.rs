@@ -121,6 +121,33 @@ impl Dumper<'_> {
             for b in &p.var_blocks {
                 d.var_block(b);
             }
+            for m in &p.methods {
+                let mut head = String::from("Method");
+                if let Some(a) = m.access {
+                    let _ = write!(head, " {}", a.keyword());
+                }
+                for (on, word) in [
+                    (m.is_abstract, "ABSTRACT"),
+                    (m.is_final, "FINAL"),
+                    (m.is_override, "OVERRIDE"),
+                ] {
+                    if on {
+                        let _ = write!(head, " {word}");
+                    }
+                }
+                let _ = write!(head, " {}", d.name(m.pou.name));
+                if let Some(r) = &m.pou.return_type {
+                    let _ = write!(head, " : {}", d.type_text(r));
+                }
+                d.line(m.pou.span, &head);
+                d.nested(|d| {
+                    for b in &m.pou.var_blocks {
+                        d.var_block(b);
+                    }
+                    d.line(m.pou.span, "Body");
+                    d.nested(|d| d.stmts(&m.pou.body));
+                });
+            }
             d.line(p.span, "Body");
             d.nested(|d| d.stmts(&p.body));
             if let Some(il) = &p.il {

@@ -143,6 +143,9 @@ impl Printer<'_> {
             for b in &pou.var_blocks {
                 p.var_block(b);
             }
+            for m in &pou.methods {
+                p.method(m);
+            }
             p.stmts(&pou.body);
             if let Some(il) = &pou.il {
                 let mut lines = Vec::new();
@@ -155,6 +158,34 @@ impl Printer<'_> {
             }
         });
         self.line(pou.kind.end_keyword());
+    }
+
+    fn method(&mut self, m: &crate::ast::Method) {
+        let mut head = String::from("METHOD");
+        if let Some(a) = m.access {
+            let _ = write!(head, " {}", a.keyword());
+        }
+        for (on, word) in [
+            (m.is_abstract, "ABSTRACT"),
+            (m.is_final, "FINAL"),
+            (m.is_override, "OVERRIDE"),
+        ] {
+            if on {
+                let _ = write!(head, " {word}");
+            }
+        }
+        let _ = write!(head, " {}", self.name(m.pou.name));
+        if let Some(r) = &m.pou.return_type {
+            let _ = write!(head, " : {}", self.type_text(r));
+        }
+        self.line(&head);
+        self.nested(|p| {
+            for b in &m.pou.var_blocks {
+                p.var_block(b);
+            }
+            p.stmts(&m.pou.body);
+        });
+        self.line("END_METHOD");
     }
 
     fn var_block(&mut self, b: &VarBlock) {

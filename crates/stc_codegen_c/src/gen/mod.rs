@@ -872,6 +872,8 @@ impl<'a> Gen<'a> {
             ),
             Root::Global(g) => (global_lvalue(m, *g), m.globals[*g].ty),
             Root::Direct(a) => (self.io_access(a, m.addr_type(a))?, m.addr_type(a)),
+            // The running function block's instance (only in its body).
+            Root::This => ("(*self)".to_string(), p.ty),
             Root::Deref(r) => {
                 // The address, checked not to be NULL, as the target type.
                 let target = m.types.ref_target(r.ty).unwrap_or(TypeId::ERROR);
@@ -1037,6 +1039,7 @@ impl<'a> Gen<'a> {
             Root::Global(g) => m.globals[*g].ty,
             Root::Direct(a) => m.addr_type(a),
             Root::Deref(r) => m.types.ref_target(r.ty)?,
+            Root::This => p.ty,
         };
         for proj in &p.proj {
             ty = match proj {
@@ -1613,7 +1616,7 @@ fn single_index(p: &Place) -> bool {
         .collect();
     let direct = match &p.root {
         Root::Var(_) => true,
-        Root::Global(_) | Root::Direct(_) => true,
+        Root::Global(_) | Root::Direct(_) | Root::This => true,
         Root::Deref(_) => false,
     };
     direct && indexes.len() == 1 && indexes[0].len() == 1

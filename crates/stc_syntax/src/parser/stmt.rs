@@ -64,6 +64,9 @@ impl Parser<'_> {
             if in_case && self.at_case_label() {
                 break;
             }
+            if self.in_method && self.at_word("END_METHOD") {
+                break;
+            }
             let before = self.pos;
             if let Some(s) = self.statement() {
                 out.push(s);

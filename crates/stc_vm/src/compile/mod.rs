@@ -996,6 +996,8 @@ impl<'a> Compiler<'a> {
                     internal(format!("{a} without a process image slot"))
                 })?))
             }
+            // The running function block's instance.
+            Root::This => Loc::At(Op::this(0)),
             Root::Deref(r) => {
                 // The address, checked not to be NULL.
                 let ptr = self.expr(r)?;
@@ -1015,6 +1017,8 @@ impl<'a> Compiler<'a> {
             Root::Global(g) => self.m.globals[*g].ty,
             Root::Direct(a) => self.m.addr_type(a),
             Root::Deref(r) => self.m.types.ref_target(r.ty).unwrap_or(TypeId::ERROR),
+            // (Only a variable of the instance follows it: its type.)
+            Root::This => p.ty,
         };
         let mut part = None;
         for proj in &p.proj {

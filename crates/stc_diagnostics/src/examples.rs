@@ -2965,6 +2965,150 @@ END_VAR
 END_PROGRAM
 ",
     ),
+    (
+        Code::E1309,
+        r"FUNCTION_BLOCK Pump
+VAR
+    speed : INT;
+END_VAR
+METHOD OVERRIDE Stop   // E1309
+    speed := 0;
+END_METHOD
+END_FUNCTION_BLOCK
+",
+        r"FUNCTION_BLOCK Pump
+VAR
+    speed : INT;
+END_VAR
+METHOD Stop
+    speed := 0;
+END_METHOD
+END_FUNCTION_BLOCK
+",
+    ),
+    (
+        Code::E1310,
+        r"FUNCTION_BLOCK Pump
+METHOD Start
+END_METHOD
+END_FUNCTION_BLOCK
+
+PROGRAM Main
+VAR
+    p : Pump;
+END_VAR
+    p.Launch();   // E1310
+END_PROGRAM
+",
+        r"FUNCTION_BLOCK Pump
+METHOD Start
+END_METHOD
+END_FUNCTION_BLOCK
+
+PROGRAM Main
+VAR
+    p : Pump;
+END_VAR
+    p.Start();
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1311,
+        r"FUNCTION_BLOCK Pump
+METHOD PRIVATE Tune
+END_METHOD
+END_FUNCTION_BLOCK
+
+PROGRAM Main
+VAR
+    p : Pump;
+END_VAR
+    p.Tune();   // E1311
+END_PROGRAM
+",
+        r"FUNCTION_BLOCK Pump
+METHOD PUBLIC Tune
+END_METHOD
+END_FUNCTION_BLOCK
+
+PROGRAM Main
+VAR
+    p : Pump;
+END_VAR
+    p.Tune();
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1312,
+        r"PROGRAM Main
+VAR_OUTPUT
+    x : INT;
+END_VAR
+    THIS^.x := 1;   // E1312
+END_PROGRAM
+",
+        r"PROGRAM Main
+VAR_OUTPUT
+    x : INT;
+END_VAR
+    x := 1;
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1313,
+        r"FUNCTION_BLOCK Pump
+METHOD Start
+END_METHOD
+METHOD Restart
+    SUPER^.Start();   // E1313
+END_METHOD
+END_FUNCTION_BLOCK
+",
+        r"FUNCTION_BLOCK Pump
+METHOD Start
+END_METHOD
+METHOD Restart
+    THIS^.Start();
+END_METHOD
+END_FUNCTION_BLOCK
+",
+    ),
+    (
+        Code::E1314,
+        r"FUNCTION_BLOCK Pump
+METHOD ABSTRACT Drain   // E1314
+END_METHOD
+END_FUNCTION_BLOCK
+",
+        r"FUNCTION_BLOCK Pump
+METHOD Drain
+END_METHOD
+END_FUNCTION_BLOCK
+",
+    ),
+    (
+        Code::E1315,
+        r"FUNCTION_BLOCK Pump
+VAR_OUTPUT
+    speed : INT;
+END_VAR
+METHOD speed   // E1315
+END_METHOD
+END_FUNCTION_BLOCK
+",
+        r"FUNCTION_BLOCK Pump
+VAR
+    speed : INT;
+END_VAR
+METHOD SetSpeed
+    speed := 1;
+END_METHOD
+END_FUNCTION_BLOCK
+",
+    ),
 ];
 
 #[cfg(test)]

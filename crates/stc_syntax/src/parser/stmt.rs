@@ -360,7 +360,11 @@ impl Parser<'_> {
             return true;
         }
         for (word, end, what) in [
-            ("METHOD", "END_METHOD", "methods are"),
+            (
+                "METHOD",
+                "END_METHOD",
+                "methods after the statements of a body (declare them before it) are",
+            ),
             ("PROPERTY", "END_PROPERTY", "properties are"),
             ("ACTION", "END_ACTION", "actions are"),
         ] {

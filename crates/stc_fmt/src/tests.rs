@@ -149,3 +149,11 @@ fn empty_and_comment_only_files() {
     check("\n\n", "");
     check("// only a comment\n", "// only a comment\n");
 }
+
+#[test]
+fn methods_are_blocks_of_their_function_block_and_references_keep_their_caret() {
+    check(
+        "FUNCTION_BLOCK f VAR x : INT; r : REF_TO INT; END_VAR\nMETHOD PUBLIC m : INT VAR_INPUT n : INT; END_VAR m := n + THIS^.x; r^ := n; END_METHOD\nx := m(1); END_FUNCTION_BLOCK",
+        "FUNCTION_BLOCK f\n    VAR\n        x : INT;\n        r : REF_TO INT;\n    END_VAR\n    METHOD PUBLIC m : INT\n        VAR_INPUT\n            n : INT;\n        END_VAR\n        m := n + THIS^.x;\n        r^ := n;\n    END_METHOD\n    x := m(1);\nEND_FUNCTION_BLOCK\n",
+    );
+}

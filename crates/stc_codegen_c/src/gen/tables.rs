@@ -654,7 +654,7 @@ impl Gen<'_> {
             "static const stc_member {mn}[{}] = {{\n    {}\n}};",
             members.len().max(1),
             if members.is_empty() {
-                "{ NULL, 0U, 0U, 0U, 0U, 0U, 0U, NULL }".to_string()
+                "{ NULL, 0U, 0U, 0U, 0U, 0U, 0U, 0U, NULL }".to_string()
             } else {
                 members.join(",\n    ")
             }

@@ -502,7 +502,10 @@ impl<'a> Layout<'a> {
         self.src(i).eq_ignore_ascii_case("METHOD")
             && self.stack.last().is_some_and(|f| f.block == Block::Pou)
             && self.at_stmt_start
-            && self.toks.get(i + 1).is_some_and(|t| t.kind == TokenKind::Ident)
+            && self
+                .toks
+                .get(i + 1)
+                .is_some_and(|t| t.kind == TokenKind::Ident)
     }
 
     /// `END_METHOD` closing an open method.

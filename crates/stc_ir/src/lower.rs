@@ -79,11 +79,11 @@ pub fn lower(ast: &Ast, analysis: Analysis, interner: &Interner, sources: &Sourc
             // (A METHOD's hidden THIS is bound by every call.)
             p.this.is_some()
                 || p.vars.iter().enumerate().any(|(v, var)| {
-                var.implicit
-                    && analysis
-                        .implicit_used
-                        .contains(&(PouId(i as u32), VarId(v as u32)))
-            })
+                    var.implicit
+                        && analysis
+                            .implicit_used
+                            .contains(&(PouId(i as u32), VarId(v as u32)))
+                })
         })
         .collect();
     let mut pous = Vec::with_capacity(analysis.pous.len());
@@ -1163,9 +1163,7 @@ impl<'a> Lowerer<'a> {
             },
             AK::IlCr => ExprKind::Load(self.cr_place(ty)),
             AK::Deref(_) => ExprKind::Load(self.place(e)),
-            AK::Literal(_) | AK::EnumValue { .. } | AK::Error => {
-                ExprKind::Const(Value::Int(0))
-            }
+            AK::Literal(_) | AK::EnumValue { .. } | AK::Error => ExprKind::Const(Value::Int(0)),
         };
         Expr { kind, ty }
     }

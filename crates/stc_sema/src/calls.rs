@@ -321,7 +321,9 @@ impl<'a> Sema<'a> {
                     format!("the method `{shown}` is private to its function block"),
                 )
                 .with_secondary(decl, "declared here")
-                .with_help("call it from the function block's body or methods, or declare it PUBLIC"),
+                .with_help(
+                    "call it from the function block's body or methods, or declare it PUBLIC",
+                ),
             );
             self.loose_args(args, scope);
             return TypeId::ERROR;

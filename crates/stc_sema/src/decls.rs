@@ -151,8 +151,12 @@ impl<'a> Sema<'a> {
             .map(|q| self.pous[q.0 as usize].name_span);
         if let Some(first) = clash {
             self.emit(
-                Diagnostic::new(Code::E1315, name.span, format!("method `{shown}` is declared twice"))
-                    .with_secondary(first, "first declared here"),
+                Diagnostic::new(
+                    Code::E1315,
+                    name.span,
+                    format!("method `{shown}` is declared twice"),
+                )
+                .with_secondary(first, "first declared here"),
             );
         } else if let Some(v) = self.pous[fb.0 as usize].lookup(name.sym) {
             let first = self.pous[fb.0 as usize].var(v).span;
@@ -264,8 +268,7 @@ impl<'a> Sema<'a> {
                         ty: TypeId::ERROR,
                         init: None,
                         constant: block.constant,
-                        retain: block.retention
-                            == Some(stc_syntax::ast::Retention::Retain),
+                        retain: block.retention == Some(stc_syntax::ast::Retention::Retain),
                         location: decl.location.as_ref().map(|l| l.address.clone()),
                         edge: decl.edge,
                         implicit: false,
@@ -1138,7 +1141,9 @@ impl<'a> Sema<'a> {
         match self.types.kind(t).clone() {
             TypeKind::Ref(_) => true,
             TypeKind::Array { elem, .. } => self.type_has_ref(elem, depth + 1),
-            TypeKind::Struct { fields } => fields.iter().any(|f| self.type_has_ref(f.ty, depth + 1)),
+            TypeKind::Struct { fields } => {
+                fields.iter().any(|f| self.type_has_ref(f.ty, depth + 1))
+            }
             TypeKind::Fb(q) => {
                 let n = self.pous[q.0 as usize].vars.len();
                 (0..n).any(|i| {

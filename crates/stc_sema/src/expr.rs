@@ -342,13 +342,14 @@ impl<'a> Sema<'a> {
             );
             let cmp = matches!(
                 op,
-                BinaryOp::Eq | BinaryOp::Ne | BinaryOp::Lt | BinaryOp::Le | BinaryOp::Gt | BinaryOp::Ge
+                BinaryOp::Eq
+                    | BinaryOp::Ne
+                    | BinaryOp::Lt
+                    | BinaryOp::Le
+                    | BinaryOp::Gt
+                    | BinaryOp::Ge
             );
-            return if cmp {
-                bool_ty
-            } else {
-                TypeId::ERROR
-            };
+            return if cmp { bool_ty } else { TypeId::ERROR };
         }
         let fits = self.types.compat(lt, rt, false) == Compat::Same
             || self.types.compat(rt, lt, false) == Compat::Same;

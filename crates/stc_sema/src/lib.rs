@@ -284,10 +284,7 @@ pub enum CallTarget {
     /// A METHOD (a function with the hidden in-out [`PouDef::this`]),
     /// called on the instance `this` denotes (`inst.m()`), or on the
     /// running instance (`m()` in the block's body or methods) for `None`.
-    Method {
-        method: PouId,
-        this: Option<ExprId>,
-    },
+    Method { method: PouId, this: Option<ExprId> },
 }
 
 #[derive(Clone, Debug)]

@@ -886,10 +886,7 @@ impl<'a> Gen<'a> {
                 self.line(format!(
                     "if ({t} == NULL) {{ stc_fault({code}U, {site}U); return; }}"
                 ));
-                (
-                    format!("(*({} *){t})", names::type_name(m, target)),
-                    target,
-                )
+                (format!("(*({} *){t})", names::type_name(m, target)), target)
             }
         };
         let mut deferred = defer;
@@ -1145,7 +1142,11 @@ impl<'a> Gen<'a> {
             {
                 let a = self.expr(x)?;
                 let b = self.expr(y)?;
-                let c = if *op == stc_values::BinOp::Eq { "==" } else { "!=" };
+                let c = if *op == stc_values::BinOp::Eq {
+                    "=="
+                } else {
+                    "!="
+                };
                 let t = self.new_temp("uint8_t".into());
                 self.line(format!("{t} = ({a} {c} {b}) ? 1U : 0U;"));
                 Ok(t)

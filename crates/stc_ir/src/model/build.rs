@@ -139,8 +139,8 @@ impl<'a> Builder<'a> {
         // references keeps address 0 free, so no variable has the address
         // of NULL (the first 8 bytes of its data area are never used).
         let m = self.m;
-        let has_refs = (0..m.types.len() as u32)
-            .any(|t| matches!(m.types.kind(TypeId(t)), TypeKind::Ref(_)));
+        let has_refs =
+            (0..m.types.len() as u32).any(|t| matches!(m.types.kind(TypeId(t)), TypeKind::Ref(_)));
         if has_refs {
             self.data.resize(NULL_GUARD as usize, 0);
         }

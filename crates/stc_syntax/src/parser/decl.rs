@@ -4,11 +4,11 @@
 use stc_diagnostics::{Code, Diagnostic, Span};
 
 use super::{is_item_end, is_item_start, is_var_block_start, Parser};
-use crate::ast::{Access, Method, 
-    AccessDecl, AccessDirection, ArrayDim, ArrayInitElem, ConfigInit, Configuration, Edge,
-    EnumMember, Init, InitKind, Item, Located, Pou, PouKind, ProgramConfig, ProgramConn, Resource,
-    Retention, StructInitElem, TaskDecl, TypeDecl, TypeSpec, TypeSpecKind, VarBlock, VarBlockItems,
-    VarDecl, VarKind,
+use crate::ast::{
+    Access, AccessDecl, AccessDirection, ArrayDim, ArrayInitElem, ConfigInit, Configuration, Edge,
+    EnumMember, Init, InitKind, Item, Located, Method, Pou, PouKind, ProgramConfig, ProgramConn,
+    Resource, Retention, StructInitElem, TaskDecl, TypeDecl, TypeSpec, TypeSpecKind, VarBlock,
+    VarBlockItems, VarDecl, VarKind,
 };
 use crate::literal;
 use crate::token::{ElemType, Keyword, TokenKind};

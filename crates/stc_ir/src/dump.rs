@@ -60,6 +60,14 @@ impl Dumper<'_> {
                     let _ = write!(s, "{} ({lo}..{hi})", base.name());
                 }
                 stc_sema::TypeKind::Void => s.push_str("VOID"),
+                stc_sema::TypeKind::Ref(t) if *t == TypeId::VOID => s.push_str("NULL"),
+                stc_sema::TypeKind::Ref(t) => {
+                    let _ = write!(s, "REF_TO {}", self.ty(*t));
+                }
+                stc_sema::TypeKind::Fb(p) | stc_sema::TypeKind::Program(p) => {
+                    let pou = &self.m.pous[*p];
+                    s.push_str(self.m.spelled(pou.name, pou.name_span));
+                }
                 _ => s.push('?'),
             },
         }

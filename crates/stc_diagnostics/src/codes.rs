@@ -508,14 +508,20 @@ Pass the instance (or a reference to it) as a parameter instead.";
 the one it EXTENDS. This function block extends none (inheritance is not
 supported yet). Call the method of this block itself, `THIS^.m()`.";
     E1314 Error "ABSTRACT method in a function block that is not ABSTRACT"
-"An ABSTRACT method has no body: a derived function block must implement
-it, and only an ABSTRACT function block (never instantiated) may declare
-one. ABSTRACT function blocks and inheritance are not supported yet; give
-the method a body and remove ABSTRACT.";
+"An ABSTRACT method is one a derived function block must implement, and
+only an ABSTRACT function block (`FUNCTION_BLOCK ABSTRACT`, never
+instantiated) may declare one. Declare the block ABSTRACT, or give the
+method its body and remove ABSTRACT.";
     E1315 Error "method name already used"
 "Two METHODs of one function block have the same name, or a method has the
 name of one of the block's variables, so `inst.m` would be ambiguous.
 Rename one of them.";
+    E1316 Error "instance of an ABSTRACT function block"
+"A FUNCTION_BLOCK declared ABSTRACT is incomplete (its ABSTRACT methods have
+no body): it is meant to be extended, never instantiated. A variable,
+global or array element of its type is refused; a VAR_IN_OUT or a
+reference (`REF_TO`) of its type is allowed, since it only refers to an
+instance. Instantiate a function block that is not ABSTRACT.";
 
     W0101 Warning "result depends on evaluation order"
 "A variable is written by an output parameter (`=>`) or VAR_IN_OUT of one call

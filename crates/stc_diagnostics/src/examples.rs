@@ -3109,6 +3109,36 @@ END_METHOD
 END_FUNCTION_BLOCK
 ",
     ),
+    (
+        Code::E1316,
+        r"FUNCTION_BLOCK ABSTRACT Shape
+METHOD ABSTRACT Area : REAL
+END_METHOD
+END_FUNCTION_BLOCK
+
+PROGRAM Main
+VAR
+    s : Shape;   // E1316
+    r : REF_TO Shape;
+END_VAR
+    r := REF(s);
+END_PROGRAM
+",
+        r"FUNCTION_BLOCK Shape
+METHOD Area : REAL
+    Area := 1.0;
+END_METHOD
+END_FUNCTION_BLOCK
+
+PROGRAM Main
+VAR
+    s : Shape;
+    r : REF_TO Shape;
+END_VAR
+    r := REF(s);
+END_PROGRAM
+",
+    ),
 ];
 
 #[cfg(test)]

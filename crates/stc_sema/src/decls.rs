@@ -179,7 +179,8 @@ impl<'a> Sema<'a> {
                 .with_help("remove OVERRIDE"),
             );
         }
-        if m.is_abstract {
+        let fb_abstract = self.pou_ast(fb).is_some_and(|a| a.is_abstract);
+        if m.is_abstract && !fb_abstract {
             self.emit(
                 Diagnostic::new(
                     Code::E1314,
@@ -1091,6 +1092,10 @@ impl<'a> Sema<'a> {
             }
         }
         let owned = !matches!(var.section, Section::InOut | Section::External);
+        if self.check_not_abstract(var.ty, owned, src.decl.ty.span) {
+            // Reported once: uses of the variable stay silent.
+            self.pous[p.0 as usize].vars[v.0 as usize].ty = TypeId::ERROR;
+        }
         match self.types.kind(self.innermost_elem(var.ty)) {
             TypeKind::Fb(_) if pou_kind == PouKind::Function && owned => {
                 self.emit(
@@ -1155,6 +1160,28 @@ impl<'a> Sema<'a> {
             }
             _ => false,
         }
+    }
+
+    /// E1316 where a variable of type `t` (or an array of them) would be
+    /// an instance of an ABSTRACT function block (`owned`: not an in-out
+    /// or external, which only refers to one).
+    fn check_not_abstract(&mut self, t: TypeId, owned: bool, span: Span) -> bool {
+        let TypeKind::Fb(fb) = *self.types.kind(self.innermost_elem(t)) else {
+            return false;
+        };
+        if owned && self.pou_ast(fb).is_some_and(|a| a.is_abstract) {
+            let name = self.sym_name(self.pous[fb.0 as usize].name);
+            self.emit(
+                Diagnostic::new(
+                    Code::E1316,
+                    span,
+                    format!("`{name}` is ABSTRACT and cannot be instantiated"),
+                )
+                .with_help("declare a reference to it (`REF_TO`) instead, or remove ABSTRACT"),
+            );
+            return true;
+        }
+        false
     }
 
     /// E1308 at a RETAIN variable that holds a reference.
@@ -1286,6 +1313,11 @@ impl<'a> Sema<'a> {
         if let Some(loc) = &src.decl.location {
             self.check_location(loc.span, &loc.address, ty);
         }
+        let ty = if self.check_not_abstract(ty, true, src.decl.ty.span) {
+            TypeId::ERROR
+        } else {
+            ty
+        };
         if self.globals[gi].var.retain && self.type_has_ref(ty, 0) {
             self.retained_ref(self.globals[gi].var.span);
         }

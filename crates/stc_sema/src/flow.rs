@@ -137,9 +137,15 @@ impl<'a> Sema<'a> {
                 );
             }
         }
+        // (An ABSTRACT method has no body to assign its result.)
+        let abstract_method = self.pous[p.0 as usize]
+            .method_of
+            .and_then(|(fb, k)| self.pou_ast(fb)?.methods.get(k))
+            .is_some_and(|m| m.is_abstract);
         let result_known = self.pous[p.0 as usize]
             .return_type
-            .is_some_and(|t| t != crate::TypeId::ERROR);
+            .is_some_and(|t| t != crate::TypeId::ERROR)
+            && !abstract_method;
         if pou.kind == PouKind::Function && result_known && !partial {
             let mut unassigned_return = false;
             let end = match &pou.il {

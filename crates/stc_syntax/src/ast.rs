@@ -588,6 +588,10 @@ pub struct Pou {
     pub partial: bool,
     /// The METHODs of a FUNCTION_BLOCK (3rd edition), in source order.
     pub methods: Vec<Method>,
+    /// `FUNCTION_BLOCK ABSTRACT`: never instantiated.
+    pub is_abstract: bool,
+    /// `FUNCTION_BLOCK FINAL`.
+    pub is_final: bool,
 }
 
 /// A METHOD of a FUNCTION_BLOCK: a function of its instance, which reads

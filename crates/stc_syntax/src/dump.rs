@@ -112,7 +112,13 @@ impl Dumper<'_> {
 
     fn pou(&mut self, p: &Pou) {
         self.pragmas(&p.pragmas);
-        let mut text = format!("{} {}", p.kind.keyword(), self.name(p.name));
+        let mut text = p.kind.keyword().to_string();
+        for (on, word) in [(p.is_abstract, " ABSTRACT"), (p.is_final, " FINAL")] {
+            if on {
+                text.push_str(word);
+            }
+        }
+        let _ = write!(text, " {}", self.name(p.name));
         if let Some(r) = &p.return_type {
             let _ = write!(text, " : {}", self.type_text(r));
         }

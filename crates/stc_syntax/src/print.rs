@@ -134,7 +134,13 @@ impl Printer<'_> {
 
     fn pou(&mut self, pou: &Pou) {
         self.pragmas(&pou.pragmas);
-        let mut head = format!("{} {}", pou.kind.keyword(), self.name(pou.name));
+        let mut head = pou.kind.keyword().to_string();
+        for (on, word) in [(pou.is_abstract, " ABSTRACT"), (pou.is_final, " FINAL")] {
+            if on {
+                head.push_str(word);
+            }
+        }
+        let _ = write!(head, " {}", self.name(pou.name));
         if let Some(r) = &pou.return_type {
             let _ = write!(head, " : {}", self.type_text(r));
         }

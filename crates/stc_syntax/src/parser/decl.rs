@@ -91,6 +91,7 @@ impl Parser<'_> {
 
     pub(crate) fn pou(&mut self, kind: PouKind, pragmas: Vec<Span>) -> Option<Pou> {
         let opener = self.bump().span();
+        let (mut is_abstract, mut is_final) = (false, false);
         for modifier in [
             "ABSTRACT",
             "FINAL",
@@ -101,7 +102,11 @@ impl Parser<'_> {
         ] {
             if self.at_word(modifier) && self.nth_kind(1) == TokenKind::Ident {
                 let span = self.bump().span();
-                self.unsupported(span, "access and inheritance modifiers are");
+                match modifier {
+                    "ABSTRACT" if kind == PouKind::FunctionBlock => is_abstract = true,
+                    "FINAL" if kind == PouKind::FunctionBlock => is_final = true,
+                    _ => self.unsupported(span, "access modifiers of a POU are"),
+                }
             }
         }
         let Some(name) = self.name("a name") else {
@@ -225,6 +230,8 @@ impl Parser<'_> {
             skipped_members: std::mem::take(&mut self.pou_skipped),
             partial: std::mem::take(&mut self.pou_partial),
             methods,
+            is_abstract,
+            is_final,
         })
     }
 
@@ -293,6 +300,8 @@ impl Parser<'_> {
                 skipped_members: Vec::new(),
                 partial: false,
                 methods: Vec::new(),
+                is_abstract: false,
+                is_final: false,
             },
             access,
             is_abstract,

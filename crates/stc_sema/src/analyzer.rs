@@ -322,6 +322,8 @@ impl<'a> Sema<'a> {
     /// skipped ACTION, METHOD or PROPERTY of that name. Unknown names there
     /// are not reported again.
     pub fn member_may_be_unsupported(&self, p: PouId, name: Symbol) -> bool {
+        // (In a METHOD: what its function block may inherit.)
+        let p = self.pous[p.0 as usize].method_of.map_or(p, |(fb, _)| fb);
         self.pou_ast(p)
             .is_some_and(|a| a.extends.is_some() || self.is_skipped_member(p, name))
     }

@@ -24,11 +24,6 @@
 
 #include "stc_meta.h"
 
-/* A reference (REF_TO T): the address of its variable, NULL for none; a
-   dereference casts it to the target's type after checking it is not
-   NULL (STC_FAULT_NULL_REFERENCE). */
-typedef void *stc_ref;
-
 /* ---- faults ---------------------------------------------------------- */
 
 /* Fault kinds: STC_FAULT_* of stc_codes.h; the texts `stc run` prints

@@ -127,6 +127,9 @@ pub(crate) struct Sema<'a> {
     /// (at the root of its argument): their values are never propagated,
     /// since a write through a reference may change them anywhere.
     pub ref_taken: FxHashSet<Symbol>,
+    /// `REF_TO T` met inside the declaration of the named type `T` (by
+    /// index in `type_decls`): the reference type, completed when `T` is.
+    pub pending_refs: FxHashMap<usize, TypeId>,
     /// Operands of IL `S`/`R` that name function block instances (the
     /// instruction sets that instance's input).
     pub il_fb_inputs: FxHashSet<ExprId>,
@@ -175,6 +178,7 @@ impl<'a> Sema<'a> {
             global_names: FxHashSet::default(),
             unsupported_names: ast.unsupported_names.iter().map(|n| n.sym).collect(),
             ref_taken,
+            pending_refs: FxHashMap::default(),
             il_fb_inputs: FxHashSet::default(),
         }
     }

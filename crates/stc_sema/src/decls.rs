@@ -409,12 +409,30 @@ impl<'a> Sema<'a> {
         }
         self.type_decls[i].state = State::InProgress;
         let decl = self.type_decls[i].decl;
-        let (ty, mut init) = self.resolve_type_spec(&decl.spec, Scope::Global, Some(decl.name.sym));
+        let (mut ty, mut init) =
+            self.resolve_type_spec(&decl.spec, Scope::Global, Some(decl.name.sym));
         if self.types.get(ty).name == Some(decl.name.sym) {
             self.types.set_name_span(ty, decl.name.span);
         }
         if let Some(i) = &decl.init {
             init = self.init_value(i, ty, Scope::Global);
+        }
+        // `REF_TO` this type inside its own declaration (a linked list):
+        // the reference made before the type existed now refers to it.
+        if let Some(r) = self.pending_refs.remove(&i) {
+            if r == ty {
+                // `TYPE R : REF_TO R;`: a reference to itself, no type.
+                let name = self.spelled(decl.name.sym, decl.name.span);
+                self.error(
+                    Code::E0102,
+                    decl.name.span,
+                    format!("type `{name}` is defined in terms of itself"),
+                );
+                *self.types.kind_mut(r) = TypeKind::Ref(TypeId::ERROR);
+                ty = TypeId::ERROR;
+            } else {
+                *self.types.kind_mut(r) = TypeKind::Ref(ty);
+            }
         }
         let e = &mut self.type_decls[i];
         e.state = State::Done;
@@ -732,6 +750,20 @@ impl<'a> Sema<'a> {
                 )
             }
             TypeSpecKind::Ref(target) => {
+                // A reference to a named type being declared (`next :
+                // REF_TO Node` inside Node) is completed when the type is.
+                if let TypeSpecKind::Named(id) = &target.kind {
+                    if let Some(GlobalName::Type(i)) = self.names.get(&id.sym).copied() {
+                        if self.type_decls[i].state == State::InProgress {
+                            if let Some(&r) = self.pending_refs.get(&i) {
+                                return (r, None);
+                            }
+                            let r = self.types.add(TypeKind::Ref(TypeId::ERROR), None, None);
+                            self.pending_refs.insert(i, r);
+                            return (r, None);
+                        }
+                    }
+                }
                 let (t, _) = self.resolve_type_spec(target, scope, None);
                 if t == TypeId::ERROR {
                     return (TypeId::ERROR, None);

@@ -211,8 +211,8 @@ impl<'a> Gen<'a> {
         // none; a dereference casts it to the target's type after checking
         // it is not NULL. Declared only where used (MISRA C 2.3).
         let m = self.m;
-        let has_refs = (0..m.types.len() as u32)
-            .any(|t| matches!(m.types.kind(TypeId(t)), TypeKind::Ref(_)));
+        let has_refs =
+            (0..m.types.len() as u32).any(|t| matches!(m.types.kind(TypeId(t)), TypeKind::Ref(_)));
         if has_refs {
             header.push_str("typedef void *stc_ref;\n");
         }

@@ -79,7 +79,8 @@ const char *stc_fault_text(uint32_t kind)
         [STC_FAULT_MUX] = "MUX selector out of range",
         [STC_FAULT_FOR_STEP_ZERO] = "FOR step of zero",
         [STC_FAULT_WATCHDOG] = "watchdog",
-        [STC_FAULT_INVALID_CODE] = "invalid bytecode"
+        [STC_FAULT_INVALID_CODE] = "invalid bytecode",
+        [STC_FAULT_NULL_REFERENCE] = "NULL dereference"
     };
     const char *t = "unknown fault";
     if ((kind < (uint32_t)STC_N_FAULT_KINDS) && (texts[kind] != NULL)) {

@@ -27,6 +27,7 @@ pub fn fault_name(k: FaultKind) -> &'static str {
         FaultKind::ForStepZero => "FOR_STEP_ZERO",
         FaultKind::Watchdog => "WATCHDOG",
         FaultKind::InvalidCode => "INVALID_CODE",
+        FaultKind::NullReference => "NULL_REFERENCE",
     }
 }
 

@@ -480,6 +480,90 @@ TO b : t := ...; END_TRANSITION`) gives its condition by assigning its own
 name, so it needs one. Name the transition, or write the condition as
 `:= expression;`.";
 
+    E1301 Error "dereference of something that is not a reference"
+"The dereference `^` reads or writes the variable a reference refers to, so
+its operand must be a reference (a value of a `REF_TO T` type); `NULL`
+refers to no variable and cannot be dereferenced either. Declare the
+variable `REF_TO T`, set it with `REF(x)`, and write `r^`.";
+    E1302 Error "REF of something that is not a variable"
+"`REF(x)` takes exactly one argument, and it must name a variable (or a
+member or element of one, or what another reference refers to): the value
+of an expression, a literal, an enumeration value, a bit of a bit string
+(`w.3`) and a direct address (`%IW0`) have no address a reference could
+hold.";
+    E1303 Error "REF of a variable that does not outlive the call"
+"A reference may only refer to memory that exists as long as the program:
+globals, the variables of PROGRAM and FUNCTION_BLOCK instances, and what
+another reference refers to. The variables of a FUNCTION or METHOD, a
+VAR_TEMP and a VAR_IN_OUT (which may stand for such a variable of the
+caller) live only during one call, so a reference to them could be used
+after they are gone; stc refuses them when compiling, and only `NULL` needs
+a check when the program runs (docs/oop.md). Keep the variable in a
+FUNCTION_BLOCK or PROGRAM instance, or in a global.";
+    E1304 Error "reference type mismatch"
+"A reference of type `REF_TO T` holds `NULL` or a reference to a variable of
+exactly type `T` (`REF(x)` has type `REF_TO` the type of `x`); there is no
+conversion between references of different target types, nor between a
+reference and a value of another type. Declare the reference with the
+variable's type, or compare and assign references of the same type.";
+    E1305 Error "REF of a constant"
+"A CONSTANT variable cannot be changed, but a reference to it could be used
+to write it (`r^ := ...`). Refer to a variable that is not CONSTANT, or
+copy the constant into one.";
+    E1306 Error "reference initialised with something other than NULL"
+"A variable of a reference type starts as `NULL` (its default); it cannot
+be given another initial value in its declaration, since the variables
+that could be referred to are laid out only when the program is built.
+Assign `r := REF(x);` in the body instead.";
+    E1307 Error "operator not defined on references"
+"References can only be compared with `=` and `<>` (to each other or to
+`NULL`); they have no arithmetic, no order and no logic. Dereference them
+(`r^ + 1`) to work on the variable they refer to.";
+    E1308 Error "reference in a RETAIN variable"
+"RETAIN variables keep their values over a warm restart, but the address a
+reference holds does not stay valid when the program is loaded again (the
+generated C places its variables anew). A RETAIN variable, or a RETAIN
+instance, array or structure, cannot contain a reference. Declare the
+reference in a VAR block without RETAIN and set it again after the
+restart.";
+    E1309 Error "OVERRIDE without a base method"
+"A METHOD declared OVERRIDE replaces the method of the same name of the
+function block it EXTENDS. This function block extends none (inheritance
+is not supported yet), so there is nothing to override. Remove OVERRIDE.";
+    E1310 Error "unknown method"
+"`inst.m(...)` calls the METHOD `m` of the function block of `inst`, which
+declares no method (and no instance variable) of that name. Check the
+spelling, or declare the method inside the FUNCTION_BLOCK (after its
+variables, before its body).";
+    E1311 Error "method not accessible here"
+"A METHOD declared PRIVATE (or PROTECTED, which without inheritance means
+the same) can only be called from its own function block: from its body or
+its other methods (`m()` or `THIS^.m()`). Call a PUBLIC method from
+outside, or declare this one PUBLIC.";
+    E1312 Error "THIS outside a function block"
+"`THIS` is the reference to the instance of the FUNCTION_BLOCK whose body or
+METHOD is running; a FUNCTION, a PROGRAM or a declaration has no instance.
+Pass the instance (or a reference to it) as a parameter instead.";
+    E1313 Error "SUPER without a base"
+"`SUPER^` is the part of the instance that a function block inherits from
+the one it EXTENDS. This function block extends none (inheritance is not
+supported yet). Call the method of this block itself, `THIS^.m()`.";
+    E1314 Error "ABSTRACT method in a function block that is not ABSTRACT"
+"An ABSTRACT method is one a derived function block must implement, and
+only an ABSTRACT function block (`FUNCTION_BLOCK ABSTRACT`, never
+instantiated) may declare one. Declare the block ABSTRACT, or give the
+method its body and remove ABSTRACT.";
+    E1315 Error "method name already used"
+"Two METHODs of one function block have the same name, or a method has the
+name of one of the block's variables, so `inst.m` would be ambiguous.
+Rename one of them.";
+    E1316 Error "instance of an ABSTRACT function block"
+"A FUNCTION_BLOCK declared ABSTRACT is incomplete (its ABSTRACT methods have
+no body): it is meant to be extended, never instantiated. A variable,
+global or array element of its type is refused; a VAR_IN_OUT or a
+reference (`REF_TO`) of its type is allowed, since it only refers to an
+instance. Instantiate a function block that is not ABSTRACT.";
+
     W0101 Warning "result depends on evaluation order"
 "A variable is written by an output parameter (`=>`) or VAR_IN_OUT of one call
 and read by another argument of the same enclosing call. IEC 61131-3 does not

@@ -3156,6 +3156,357 @@ END_ACTION
 END_PROGRAM
 ",
     ),
+    // Object orientation and references.
+    (
+        Code::E1301,
+        r"PROGRAM Main
+VAR
+    x : INT;
+    y : INT;
+END_VAR
+    y := x^;   // E1301
+END_PROGRAM
+",
+        r"PROGRAM Main
+VAR
+    x : INT;
+    r : REF_TO INT;
+    y : INT;
+END_VAR
+    r := REF(x);
+    y := r^;
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1302,
+        r"PROGRAM Main
+VAR
+    x : INT;
+    r : REF_TO INT;
+END_VAR
+    r := REF(x + 1);   // E1302
+    r^ := 0;
+END_PROGRAM
+",
+        r"PROGRAM Main
+VAR
+    x : INT;
+    r : REF_TO INT;
+END_VAR
+    r := REF(x);
+    r^ := 0;
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1303,
+        r"FUNCTION Scale : INT
+VAR
+    tmp : INT;
+    r : REF_TO INT;
+END_VAR
+    r := REF(tmp);   // E1303
+    Scale := r^;
+END_FUNCTION
+",
+        r"FUNCTION_BLOCK Scale
+VAR_OUTPUT
+    out : INT;
+END_VAR
+VAR
+    tmp : INT;
+    r : REF_TO INT;
+END_VAR
+    r := REF(tmp);
+    out := r^;
+END_FUNCTION_BLOCK
+",
+    ),
+    (
+        Code::E1304,
+        r"PROGRAM Main
+VAR
+    d : DINT;
+    r : REF_TO INT;
+END_VAR
+    r := REF(d);   // E1304
+    r^ := 1;
+END_PROGRAM
+",
+        r"PROGRAM Main
+VAR
+    d : DINT;
+    r : REF_TO DINT;
+END_VAR
+    r := REF(d);
+    r^ := 1;
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1305,
+        r"PROGRAM Main
+VAR CONSTANT
+    limit : INT := 10;
+END_VAR
+VAR
+    r : REF_TO INT;
+END_VAR
+    r := REF(limit);   // E1305
+    r^ := 0;
+END_PROGRAM
+",
+        r"PROGRAM Main
+VAR
+    limit : INT := 10;
+    r : REF_TO INT;
+END_VAR
+    r := REF(limit);
+    r^ := 0;
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1306,
+        r"PROGRAM Main
+VAR
+    x : INT;
+    r : REF_TO INT := REF(x);   // E1306
+END_VAR
+    r^ := 1;
+END_PROGRAM
+",
+        r"PROGRAM Main
+VAR
+    x : INT;
+    r : REF_TO INT := NULL;
+END_VAR
+    r := REF(x);
+    r^ := 1;
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1307,
+        r"PROGRAM Main
+VAR
+    x : INT;
+    r : REF_TO INT;
+    y : INT;
+END_VAR
+    r := REF(x);
+    y := r + 1;   // E1307
+END_PROGRAM
+",
+        r"PROGRAM Main
+VAR
+    x : INT;
+    r : REF_TO INT;
+    y : INT;
+END_VAR
+    r := REF(x);
+    y := r^ + 1;
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1308,
+        r"PROGRAM Main
+VAR RETAIN
+    r : REF_TO INT;   // E1308
+END_VAR
+VAR
+    x : INT;
+END_VAR
+    r := REF(x);
+    r^ := 1;
+END_PROGRAM
+",
+        r"PROGRAM Main
+VAR
+    r : REF_TO INT;
+    x : INT;
+END_VAR
+    r := REF(x);
+    r^ := 1;
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1309,
+        r"FUNCTION_BLOCK Pump
+VAR
+    speed : INT;
+END_VAR
+METHOD OVERRIDE Stop   // E1309
+    speed := 0;
+END_METHOD
+END_FUNCTION_BLOCK
+",
+        r"FUNCTION_BLOCK Pump
+VAR
+    speed : INT;
+END_VAR
+METHOD Stop
+    speed := 0;
+END_METHOD
+END_FUNCTION_BLOCK
+",
+    ),
+    (
+        Code::E1310,
+        r"FUNCTION_BLOCK Pump
+METHOD Start
+END_METHOD
+END_FUNCTION_BLOCK
+
+PROGRAM Main
+VAR
+    p : Pump;
+END_VAR
+    p.Launch();   // E1310
+END_PROGRAM
+",
+        r"FUNCTION_BLOCK Pump
+METHOD Start
+END_METHOD
+END_FUNCTION_BLOCK
+
+PROGRAM Main
+VAR
+    p : Pump;
+END_VAR
+    p.Start();
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1311,
+        r"FUNCTION_BLOCK Pump
+METHOD PRIVATE Tune
+END_METHOD
+END_FUNCTION_BLOCK
+
+PROGRAM Main
+VAR
+    p : Pump;
+END_VAR
+    p.Tune();   // E1311
+END_PROGRAM
+",
+        r"FUNCTION_BLOCK Pump
+METHOD PUBLIC Tune
+END_METHOD
+END_FUNCTION_BLOCK
+
+PROGRAM Main
+VAR
+    p : Pump;
+END_VAR
+    p.Tune();
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1312,
+        r"PROGRAM Main
+VAR_OUTPUT
+    x : INT;
+END_VAR
+    THIS^.x := 1;   // E1312
+END_PROGRAM
+",
+        r"PROGRAM Main
+VAR_OUTPUT
+    x : INT;
+END_VAR
+    x := 1;
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1313,
+        r"FUNCTION_BLOCK Pump
+METHOD Start
+END_METHOD
+METHOD Restart
+    SUPER^.Start();   // E1313
+END_METHOD
+END_FUNCTION_BLOCK
+",
+        r"FUNCTION_BLOCK Pump
+METHOD Start
+END_METHOD
+METHOD Restart
+    THIS^.Start();
+END_METHOD
+END_FUNCTION_BLOCK
+",
+    ),
+    (
+        Code::E1314,
+        r"FUNCTION_BLOCK Pump
+METHOD ABSTRACT Drain   // E1314
+END_METHOD
+END_FUNCTION_BLOCK
+",
+        r"FUNCTION_BLOCK Pump
+METHOD Drain
+END_METHOD
+END_FUNCTION_BLOCK
+",
+    ),
+    (
+        Code::E1315,
+        r"FUNCTION_BLOCK Pump
+VAR_OUTPUT
+    speed : INT;
+END_VAR
+METHOD speed   // E1315
+END_METHOD
+END_FUNCTION_BLOCK
+",
+        r"FUNCTION_BLOCK Pump
+VAR
+    speed : INT;
+END_VAR
+METHOD SetSpeed
+    speed := 1;
+END_METHOD
+END_FUNCTION_BLOCK
+",
+    ),
+    (
+        Code::E1316,
+        r"FUNCTION_BLOCK ABSTRACT Shape
+METHOD ABSTRACT Area : REAL
+END_METHOD
+END_FUNCTION_BLOCK
+
+PROGRAM Main
+VAR
+    s : Shape;   // E1316
+    r : REF_TO Shape;
+END_VAR
+    r := REF(s);
+END_PROGRAM
+",
+        r"FUNCTION_BLOCK Shape
+METHOD Area : REAL
+    Area := 1.0;
+END_METHOD
+END_FUNCTION_BLOCK
+
+PROGRAM Main
+VAR
+    s : Shape;
+    r : REF_TO Shape;
+END_VAR
+    r := REF(s);
+END_PROGRAM
+",
+    ),
 ];
 
 #[cfg(test)]

@@ -102,9 +102,17 @@ FUNCTION_BLOCK Counter
     VAR_OUTPUT n : INT; END_VAR
     VAR_EXTERNAL shared : DINT; END_VAR
     VAR_TEMP t : INT; END_VAR
+    VAR last : REF_TO DINT; refs : ARRAY[1..2] OF REF_TO INT; END_VAR
+    METHOD Reset : INT
+        VAR_INPUT v : INT; END_VAR
+        n := v;
+        Reset := n;
+    END_METHOD
     t := step;
     n := n + t;
     total := total + shared;
+    last := REF(shared);
+    refs[1] := NULL;
 END_FUNCTION_BLOCK
 
 PROGRAM Main
@@ -121,6 +129,7 @@ PROGRAM Main
     END_VAR
     VAR_EXTERNAL shared : DINT; lamp : BOOL; END_VAR
     c(step := 2, total := sum);
+    c.Reset(v := 1);
     out := Scale(c.n, 0.5);
     r.hist[2] := 3;
     lamp := go AND sensor > 0;

@@ -857,7 +857,13 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         self.b.ins().stack_addr(I64, ss, 0)
     }
 
+    /// The elementary type a value is handled as natively; a reference is
+    /// its 4-byte model address, handled as a UDINT (NULL is 0), as on
+    /// the VM.
     fn scalar(&self, t: TypeId) -> Option<ElemType> {
+        if let TypeKind::Ref(_) = self.g.m.types.kind(t) {
+            return Some(ElemType::Udint);
+        }
         self.g
             .m
             .types
@@ -1193,11 +1199,23 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                     .ok_or_else(|| internal(format!("{a} without a process image slot")))?;
                 self.iconst(I64, i64::from(o))
             }
+            // The running function block's instance.
+            Root::This => self.this,
+            Root::Deref(r) => {
+                // The address, checked not to be NULL (as the VM does).
+                let v = self.expr_s(r)?;
+                let null = self.b.ins().icmp_imm(IntCC::Equal, v, 0);
+                self.fault_if(null, FaultKind::NullReference);
+                fixed = false;
+                self.b.ins().uextend(I64, v)
+            }
         };
         let mut ty = match &p.root {
             Root::Var(v) => m.pous[self.p].var(*v).ty,
             Root::Global(g) => m.globals[*g].ty,
             Root::Direct(a) => m.addr_type(a),
+            Root::Deref(r) => m.types.ref_target(r.ty).unwrap_or(TypeId::ERROR),
+            Root::This => p.ty,
         };
         let mut part = None;
         for proj in &p.proj {
@@ -1421,6 +1439,11 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
             ExprKind::Load(p) => {
                 let pl = self.place(p)?;
                 self.load_place(&pl, e.ty)
+            }
+            ExprKind::Null => Ok(V::S(self.iconst(I32, 0))),
+            ExprKind::Ref(p) => {
+                let pl = self.place(p)?;
+                Ok(V::S(self.b.ins().ireduce(I32, pl.addr)))
             }
             ExprKind::Unary(op, x) => {
                 let a = self.expr(x)?;

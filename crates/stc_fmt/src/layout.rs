@@ -21,6 +21,8 @@ use crate::{KeywordCase, Options};
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 enum Block {
     Pou,
+    /// A METHOD of a function block (its words are identifiers).
+    Method,
     Type,
     Struct,
     Var,
@@ -391,6 +393,17 @@ impl<'a> Layout<'a> {
             TokenKind::Kw(Keyword::Task | Keyword::Program) => {
                 forced = Some(self.body_level());
             }
+            TokenKind::Ident if self.opens_method(i) => {
+                forced = Some(self.body_level());
+                push = Some(Block::Method);
+            }
+            TokenKind::Ident if self.closes_method(i) => {
+                if let Some(pos) = self.stack.iter().rposition(|f| f.block == Block::Method) {
+                    let f = self.stack[pos];
+                    self.stack.truncate(pos);
+                    forced = Some(f.indent);
+                }
+            }
             TokenKind::Kw(Keyword::If) => push = Some(Block::If),
             TokenKind::Kw(Keyword::Case) => push = Some(Block::Case),
             TokenKind::Kw(Keyword::For) => push = Some(Block::For),
@@ -505,6 +518,9 @@ impl<'a> Layout<'a> {
             }
             TokenKind::Kw(k) if is_var_keyword(k) => self.var_header = true,
             TokenKind::Kw(k) if closes(k).is_some() => self.stmt_end(Pending::BreakUnlessSemi),
+            TokenKind::Ident if self.src(i).eq_ignore_ascii_case("END_METHOD") => {
+                self.stmt_end(Pending::BreakUnlessSemi)
+            }
             _ => {}
         }
         self.prev_tok = Some(kind);
@@ -568,9 +584,32 @@ impl<'a> Layout<'a> {
 
     /// A line break the user wrote ends a POU's, configuration's or
     /// resource's head line: what follows is its body.
+    /// `METHOD` starting a method of the function block being laid out
+    /// (followed by its name or a modifier).
+    fn opens_method(&self, i: usize) -> bool {
+        self.src(i).eq_ignore_ascii_case("METHOD")
+            && self.stack.last().is_some_and(|f| f.block == Block::Pou)
+            && self.at_stmt_start
+            && self
+                .toks
+                .get(i + 1)
+                .is_some_and(|t| t.kind == TokenKind::Ident)
+    }
+
+    /// `END_METHOD` closing an open method.
+    fn closes_method(&self, i: usize) -> bool {
+        self.src(i).eq_ignore_ascii_case("END_METHOD")
+            && self.stack.iter().any(|f| f.block == Block::Method)
+    }
+
     fn end_head_line(&mut self) {
         if let Some(f) = self.stack.last_mut() {
-            if f.header && matches!(f.block, Block::Pou | Block::Config | Block::Resource) {
+            if f.header
+                && matches!(
+                    f.block,
+                    Block::Pou | Block::Method | Block::Config | Block::Resource
+                )
+            {
                 f.header = false;
                 self.at_stmt_start = true;
             }

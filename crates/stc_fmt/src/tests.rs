@@ -157,3 +157,11 @@ fn sfc_elements_are_blocks() {
         "PROGRAM p\n    VAR\n        go, lamp : BOOL;\n    END_VAR\n    INITIAL_STEP s0 :\n        lamp(N);\n    END_STEP\n    STEP s1 :\n        a(L, T#1s);\n    END_STEP\n    TRANSITION t (PRIORITY := 1) FROM s0 TO (s1) := go;\n    END_TRANSITION\n    TRANSITION u FROM s1 TO s0 :\n        u := NOT go;\n    END_TRANSITION\n    ACTION a :\n        go := FALSE;\n    END_ACTION\nEND_PROGRAM\n",
     );
 }
+
+#[test]
+fn methods_are_blocks_of_their_function_block_and_references_keep_their_caret() {
+    check(
+        "FUNCTION_BLOCK f VAR x : INT; r : REF_TO INT; END_VAR\nMETHOD PUBLIC m : INT VAR_INPUT n : INT; END_VAR m := n + THIS^.x; r^ := n; END_METHOD\nx := m(1); END_FUNCTION_BLOCK",
+        "FUNCTION_BLOCK f\n    VAR\n        x : INT;\n        r : REF_TO INT;\n    END_VAR\n    METHOD PUBLIC m : INT\n        VAR_INPUT\n            n : INT;\n        END_VAR\n        m := n + THIS^.x;\n        r^ := n;\n    END_METHOD\n    x := m(1);\nEND_FUNCTION_BLOCK\n",
+    );
+}

@@ -60,6 +60,14 @@ impl Dumper<'_> {
                     let _ = write!(s, "{} ({lo}..{hi})", base.name());
                 }
                 stc_sema::TypeKind::Void => s.push_str("VOID"),
+                stc_sema::TypeKind::Ref(t) if *t == TypeId::VOID => s.push_str("NULL"),
+                stc_sema::TypeKind::Ref(t) => {
+                    let _ = write!(s, "REF_TO {}", self.ty(*t));
+                }
+                stc_sema::TypeKind::Fb(p) | stc_sema::TypeKind::Program(p) => {
+                    let pou = &self.m.pous[*p];
+                    s.push_str(self.m.spelled(pou.name, pou.name_span));
+                }
                 _ => s.push('?'),
             },
         }
@@ -234,6 +242,8 @@ impl Dumper<'_> {
                 self.m.spelled(g.name, g.span)
             }),
             Root::Direct(a) => a.to_string(),
+            Root::Deref(r) => format!("{}^", self.expr(r)),
+            Root::This => "THIS^".to_string(),
         };
         for proj in &p.proj {
             match proj {
@@ -268,6 +278,8 @@ impl Dumper<'_> {
         match &e.kind {
             ExprKind::Const(v) => format!("{}:{t}", value_text(v)),
             ExprKind::Load(p) => self.place(p),
+            ExprKind::Ref(p) => format!("(ref:{t} {})", self.place(p)),
+            ExprKind::Null => format!("null:{t}"),
             ExprKind::Unary(op, x) => {
                 let o = match op {
                     UnOp::Neg => "neg",

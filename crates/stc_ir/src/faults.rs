@@ -214,6 +214,10 @@ impl Direct<'_> {
     }
 
     fn place(&mut self, p: &Place) -> bool {
+        // A dereference faults on NULL.
+        if let Root::Deref(_) = p.root {
+            return true;
+        }
         p.proj.iter().any(|pr| match pr {
             Proj::Index(idx) => idx.iter().any(|(e, lo, hi)| {
                 let checked = !matches!(e.unlocated().kind, ExprKind::Const(Value::Int(_)))
@@ -247,8 +251,8 @@ impl Direct<'_> {
             return true;
         }
         match &e.kind {
-            ExprKind::Const(_) | ExprKind::CurTime => false,
-            ExprKind::Load(p) => self.place(p),
+            ExprKind::Const(_) | ExprKind::CurTime | ExprKind::Null => false,
+            ExprKind::Load(p) | ExprKind::Ref(p) => self.place(p),
             ExprKind::Unary(_, x) | ExprKind::Convert(x) => self.expr(x),
             ExprKind::Binary(_, x, y) => self.expr(x) || self.expr(y),
             ExprKind::Check { value, .. } => self.expr(value),
@@ -278,6 +282,8 @@ pub fn node_may_fault(types: &TypeTable, e: &Expr) -> bool {
         | ExprKind::CurTime
         | ExprKind::Load(_)
         | ExprKind::CallFn { .. }
+        | ExprKind::Null
+        | ExprKind::Ref(_)
         | ExprKind::Located { .. } => false,
         ExprKind::Unary(op, x) => unary_faults(*op, elem(x.ty)),
         ExprKind::Binary(op, x, y) => binary_faults(*op, elem(x.ty), elem(y.ty), elem(e.ty), y),

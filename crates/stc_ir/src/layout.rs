@@ -368,6 +368,10 @@ impl Layouts {
         }
         let l = match m.types.kind(t).clone() {
             TypeKind::Error | TypeKind::Void => Ok(Layout { size: 0, align: 1 }),
+            TypeKind::Ref(_) => Ok(Layout {
+                size: REF_SIZE,
+                align: REF_SIZE,
+            }),
             TypeKind::Elem(e) => Ok(Layout {
                 size: elem_size(e),
                 align: elem_size(e),

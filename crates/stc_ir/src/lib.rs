@@ -354,11 +354,13 @@ pub enum FaultKind {
     /// Bytecode that tried to leave its memory (only a corrupt or hostile
     /// program file can; the verifier rejects them before they run).
     InvalidCode = 8,
+    /// A dereference of NULL.
+    NullReference = 9,
 }
 
 impl FaultKind {
     /// Every kind, in the order of their codes.
-    pub const ALL: [FaultKind; 8] = [
+    pub const ALL: [FaultKind; 9] = [
         FaultKind::DivisionByZero,
         FaultKind::IndexOutOfBounds,
         FaultKind::SubrangeViolation,
@@ -367,6 +369,7 @@ impl FaultKind {
         FaultKind::ForStepZero,
         FaultKind::Watchdog,
         FaultKind::InvalidCode,
+        FaultKind::NullReference,
     ];
 
     /// The kind's stable code (see the type's documentation).
@@ -390,6 +393,7 @@ impl FaultKind {
             FaultKind::ForStepZero => "FOR step of zero",
             FaultKind::Watchdog => "watchdog",
             FaultKind::InvalidCode => "invalid bytecode",
+            FaultKind::NullReference => "NULL dereference",
         }
     }
 
@@ -456,6 +460,14 @@ pub enum ExprKind {
         col: u32,
         expr: Box<Expr>,
     },
+    /// `REF(x)`: the reference to a place (of instance or global memory,
+    /// never of a frame: the analyser refuses those, docs/oop.md). Its type
+    /// is a [`stc_sema::TypeKind::Ref`].
+    Ref(Place),
+    /// The null reference (of any reference type). Back ends store a
+    /// reference as an address (4 bytes on the VM and the JIT, a pointer in
+    /// C) and `NULL` as 0; `=` and `<>` compare references.
+    Null,
 }
 
 impl Expr {
@@ -488,6 +500,14 @@ pub enum Root {
     Var(VarId),
     Global(GlobalId),
     Direct(DirectAddress),
+    /// The instance of the FUNCTION_BLOCK whose body runs (`THIS^` in its
+    /// body; a METHOD reaches its instance through its hidden in-out
+    /// variable instead). Only in the body of a function block.
+    This,
+    /// What a reference refers to (`r^`): the expression, of a reference
+    /// type, is evaluated, and a NULL reference is the fault
+    /// [`FaultKind::NullReference`].
+    Deref(Box<Expr>),
 }
 
 #[derive(Clone, Debug)]

@@ -8,7 +8,7 @@ use stc_sema::{
     Analysis, BoundArgKind, CallInfo, CallTarget, InitValue, PouId, Res, Section, TypeId, TypeKind,
     VarId,
 };
-use stc_syntax::ast::{self as ast, Ast, ExprId, ExprKind as AK, Item, PouKind, StmtKind as SK};
+use stc_syntax::ast::{self as ast, Ast, ExprId, ExprKind as AK, PouKind, StmtKind as SK};
 use stc_syntax::token::ElemType;
 use stc_syntax::Interner;
 use stc_values::{BinOp, Intrinsic, UnOp, Value};
@@ -81,18 +81,20 @@ pub fn lower(ast: &Ast, analysis: Analysis, interner: &Interner, sources: &Sourc
         .iter()
         .enumerate()
         .map(|(i, p)| {
-            p.vars.iter().enumerate().any(|(v, var)| {
-                var.implicit
-                    && analysis
-                        .implicit_used
-                        .contains(&(PouId(i as u32), VarId(v as u32)))
-            })
+            // (A METHOD's hidden THIS is bound by every call.)
+            p.this.is_some()
+                || p.vars.iter().enumerate().any(|(v, var)| {
+                    var.implicit
+                        && analysis
+                            .implicit_used
+                            .contains(&(PouId(i as u32), VarId(v as u32)))
+                })
         })
         .collect();
     let mut pous = Vec::with_capacity(analysis.pous.len());
     for (i, def) in analysis.pous.iter().enumerate() {
         // (Skipping one would shift the PouId of every later POU.)
-        let Item::Pou(src) = &ast.items[def.item] else {
+        let Some(src) = analysis.pou_syntax(ast, PouId(i as u32)) else {
             panic!("internal error: POU {i} is not declared by a POU item");
         };
         let mut l = Lowerer {
@@ -751,7 +753,12 @@ impl<'a> Lowerer<'a> {
 
         // The call, when EN is TRUE.
         let callee_name = match (&info.target, &self.ast.expr(e).kind) {
-            (CallTarget::Function(q) | CallTarget::FbInstance(q), _) => self.a.pou(*q).name,
+            (
+                CallTarget::Function(q)
+                | CallTarget::FbInstance(q)
+                | CallTarget::Method { method: q, .. },
+                _,
+            ) => self.a.pou(*q).name,
             (_, AK::Call { callee, .. }) => match &self.ast.expr(*callee).kind {
                 AK::Name(id) => id.sym,
                 _ => self.a.pou(self.pou).name,
@@ -845,7 +852,9 @@ impl<'a> Lowerer<'a> {
                     None => StmtKind::Eval(value),
                 }
             }
-            CallTarget::CurTime => {
+            CallTarget::CurTime | CallTarget::Ref | CallTarget::Method { .. } => {
+                // (REF and method calls never have EN/ENO: the analyser
+                // binds none, so they never come here.)
                 let value = Expr {
                     kind: ExprKind::CurTime,
                     ty,
@@ -1091,6 +1100,9 @@ impl<'a> Lowerer<'a> {
         };
         let base = self.locate_fault(e, base);
         match self.a.coercions.get(&e) {
+            // References of the same target type (NULL's type to any):
+            // the same value.
+            Some(&t) if self.a.types.ref_target(t).is_some() => Expr { ty: t, ..base },
             Some(&t) if t != ty => {
                 // Constants are converted right away.
                 if let ExprKind::Const(v) = &base.kind {
@@ -1185,12 +1197,13 @@ impl<'a> Lowerer<'a> {
                     };
                     ExprKind::Const(Value::Int(v))
                 }
+                None if self.a.types.ref_target(ty) == Some(TypeId::VOID) => ExprKind::Null,
+                Some(Res::This) => ExprKind::Ref(self.this_place()),
                 _ => ExprKind::Load(self.place(e)),
             },
             AK::IlCr => ExprKind::Load(self.cr_place(ty)),
-            AK::Literal(_) | AK::EnumValue { .. } | AK::Error | AK::Deref(_) => {
-                ExprKind::Const(Value::Int(0))
-            }
+            AK::Deref(_) => ExprKind::Load(self.place(e)),
+            AK::Literal(_) | AK::EnumValue { .. } | AK::Error => ExprKind::Const(Value::Int(0)),
         };
         Expr { kind, ty }
     }
@@ -1221,6 +1234,26 @@ impl<'a> Lowerer<'a> {
                 }
             }
             CallTarget::CurTime => ExprKind::CurTime,
+            CallTarget::Method { method, this } => {
+                let (inputs, mut inouts, outputs) = self.bind(&info.args);
+                let target = match this {
+                    Some(x) => self.place(*x),
+                    None => self.this_place(),
+                };
+                if let Some(tv) = self.a.pou(*method).this {
+                    inouts.push((tv, target));
+                }
+                ExprKind::CallFn {
+                    func: *method,
+                    inputs,
+                    inouts,
+                    outputs,
+                }
+            }
+            CallTarget::Ref => match info.args.first().map(|a| &a.kind) {
+                Some(BoundArgKind::Input(x)) => ExprKind::Ref(self.place(*x)),
+                _ => ExprKind::Null,
+            },
             CallTarget::FbInstance(_) => ExprKind::Const(Value::Int(0)),
             CallTarget::Std { intrinsic, .. } => {
                 let values: Vec<ExprId> = info
@@ -1312,6 +1345,38 @@ impl<'a> Lowerer<'a> {
         }
     }
 
+    /// Whether an expression is `THIS` (in parentheses or not).
+    fn is_this(&self, e: ExprId) -> bool {
+        match &self.ast.expr(e).kind {
+            AK::Paren(i) => self.is_this(*i),
+            AK::Name(_) => matches!(self.a.resolutions.get(&e), Some(Res::This)),
+            _ => false,
+        }
+    }
+
+    /// The running function block instance: in a METHOD its hidden
+    /// in-out, in the block's body the instance itself.
+    fn this_place(&self) -> Place {
+        let def = self.a.pou(self.pou);
+        if let Some(t) = def.this {
+            return Place {
+                root: Root::Var(t),
+                proj: vec![],
+                ty: def.var(t).ty,
+            };
+        }
+        let me = self.pou;
+        let ty = (0..self.a.types.len() as u32)
+            .map(TypeId)
+            .find(|t| matches!(self.a.types.kind(*t), TypeKind::Fb(q) if *q == me))
+            .unwrap_or(TypeId::ERROR);
+        Place {
+            root: Root::This,
+            proj: vec![],
+            ty,
+        }
+    }
+
     fn place(&mut self, e: ExprId) -> Place {
         let ty = self.a.expr_type(e);
         match &self.ast.expr(e).kind {
@@ -1332,12 +1397,33 @@ impl<'a> Lowerer<'a> {
                     proj: vec![],
                     ty,
                 },
+                // In a METHOD: a variable of its instance.
+                Some(Res::FbMember(fb, v)) => {
+                    let mut p = self.this_place();
+                    p.proj.push(Proj::FbVar(*fb, *v));
+                    p.ty = ty;
+                    p
+                }
                 _ => Place {
                     root: Root::Var(VarId(0)),
                     proj: vec![],
                     ty,
                 },
             },
+            // `THIS^`: the instance itself.
+            AK::Deref(r) if self.is_this(*r) => {
+                let mut p = self.this_place();
+                p.ty = ty;
+                p
+            }
+            AK::Deref(r) => {
+                let r = self.expr(*r);
+                Place {
+                    root: Root::Deref(Box::new(r)),
+                    proj: vec![],
+                    ty,
+                }
+            }
             AK::Member { base, .. } => {
                 let mut p = self.place(*base);
                 match self.a.resolutions.get(&e) {

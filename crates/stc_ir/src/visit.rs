@@ -63,6 +63,9 @@ pub fn walk(stmts: &[Stmt], on_expr: &mut dyn FnMut(&Expr), on_place: &mut dyn F
 
 fn place(p: &Place, on_expr: &mut dyn FnMut(&Expr), on_place: &mut dyn FnMut(&Place)) {
     on_place(p);
+    if let Root::Deref(r) = &p.root {
+        expr(r, on_expr, on_place);
+    }
     for pr in &p.proj {
         if let Proj::Index(idx) = pr {
             idx.iter().for_each(|(e, _, _)| expr(e, on_expr, on_place));
@@ -73,7 +76,7 @@ fn place(p: &Place, on_expr: &mut dyn FnMut(&Expr), on_place: &mut dyn FnMut(&Pl
 fn expr(e: &Expr, on_expr: &mut dyn FnMut(&Expr), on_place: &mut dyn FnMut(&Place)) {
     on_expr(e);
     match &e.kind {
-        ExprKind::Load(p) => place(p, on_expr, on_place),
+        ExprKind::Load(p) | ExprKind::Ref(p) => place(p, on_expr, on_place),
         ExprKind::Unary(_, x) | ExprKind::Convert(x) => expr(x, on_expr, on_place),
         ExprKind::Check { value, .. } => expr(value, on_expr, on_place),
         ExprKind::Located { expr: x, .. } => expr(x, on_expr, on_place),
@@ -94,7 +97,7 @@ fn expr(e: &Expr, on_expr: &mut dyn FnMut(&Expr), on_place: &mut dyn FnMut(&Plac
                 .iter()
                 .for_each(|o| place(&o.target, on_expr, on_place));
         }
-        ExprKind::Const(_) | ExprKind::CurTime => {}
+        ExprKind::Const(_) | ExprKind::CurTime | ExprKind::Null => {}
     }
 }
 
@@ -163,8 +166,8 @@ pub fn used_vars(stmts: &[Stmt], n: usize) -> Vec<bool> {
 pub fn has_call(e: &Expr) -> bool {
     match &e.kind {
         ExprKind::CallFn { .. } => true,
-        ExprKind::Const(_) | ExprKind::CurTime => false,
-        ExprKind::Load(p) => place_has_call(p),
+        ExprKind::Const(_) | ExprKind::CurTime | ExprKind::Null => false,
+        ExprKind::Load(p) | ExprKind::Ref(p) => place_has_call(p),
         ExprKind::Unary(_, x) | ExprKind::Convert(x) => has_call(x),
         ExprKind::Check { value, .. } => has_call(value),
         ExprKind::Located { expr, .. } => has_call(expr),
@@ -175,6 +178,11 @@ pub fn has_call(e: &Expr) -> bool {
 
 /// Whether an index of a place calls a function.
 pub fn place_has_call(p: &Place) -> bool {
+    if let Root::Deref(r) = &p.root {
+        if has_call(r) {
+            return true;
+        }
+    }
     p.proj.iter().any(|pr| match pr {
         Proj::Index(idx) => idx.iter().any(|(e, _, _)| has_call(e)),
         _ => false,

@@ -165,10 +165,19 @@ impl Project {
     fn visible(&self, at: u32) -> Vec<(Symbol, Span, Decl<'_>)> {
         let mut out = Vec::new();
         if let Some(p) = self.pou_at(at) {
+            // Inside a METHOD: its own variables first, then the block's.
+            for m in &p.methods {
+                if m.pou.span.lo <= at && at <= m.pou.span.hi {
+                    vars_of(&m.pou.var_blocks, &mut out);
+                }
+            }
             vars_of(&p.var_blocks, &mut out);
             // The state a chart's meaning declares (`SFC$$...`) is no
             // user's name.
             out.retain(|(s, _, _)| !self.spelling(*s).contains('$'));
+            for m in &p.methods {
+                out.push((m.pou.name.sym, m.pou.name.span, Decl::Pou(&m.pou)));
+            }
         }
         for it in self.items() {
             match it {
@@ -233,6 +242,9 @@ impl Project {
                         if let Some(d) = find_var(&p.var_blocks, s) {
                             out.push((s, sp, d));
                         }
+                    }
+                    for m in &p.methods {
+                        out.push((m.pou.name.sym, m.pou.name.span, Decl::Pou(&m.pou)));
                     }
                 }
                 Item::Types(ts, _) => {
@@ -549,4 +561,29 @@ fn find_var(blocks: &[VarBlock], s: Symbol) -> Option<Decl<'_>> {
     let mut all = Vec::new();
     vars_of(blocks, &mut all);
     all.into_iter().find(|(x, _, _)| *x == s).map(|(_, _, d)| d)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn methods_complete_as_members_and_their_variables_inside_them() {
+        let text = "FUNCTION_BLOCK Pump\nVAR speed : INT; END_VAR\nMETHOD Start\nVAR_INPUT rate : INT; END_VAR\n    speed := rate;\nEND_METHOD\nEND_FUNCTION_BLOCK\nPROGRAM Main\nVAR p : Pump; END_VAR\n    p.\nEND_PROGRAM\n";
+        let uri = "file:///m.st".to_string();
+        let project = Project::analyse(vec![(uri.clone(), text.into())], Default::default());
+        let labels = |line: u32, character: u32| -> Vec<String> {
+            project
+                .completion(&uri, Position::new(line, character))
+                .expect("completion")
+                .into_iter()
+                .map(|c| c.label)
+                .collect()
+        };
+        let inside = labels(4, 4);
+        assert!(inside.iter().any(|l| l == "rate"), "{inside:?}");
+        assert!(inside.iter().any(|l| l == "speed"), "{inside:?}");
+        let members = labels(9, 6);
+        assert!(members.iter().any(|l| l == "Start"), "{members:?}");
+    }
 }

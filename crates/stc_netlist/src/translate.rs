@@ -279,6 +279,8 @@ impl<'m> Tr<'m> {
     fn build(&mut self, t: TypeId, name: &str, init: Option<&InitValue>, kind: Kind2) -> SlotId {
         let m = self.m;
         match m.types.kind(t) {
+            // (A reference has no cells; using one is refused.)
+            TypeKind::Ref(_) => self.slot(Slot::Absent),
             TypeKind::Elem(_)
             | TypeKind::Subrange { .. }
             | TypeKind::Enum { .. }
@@ -1197,6 +1199,12 @@ impl<'m> Tr<'m> {
                     ))
                 }
             },
+            Root::Deref(_) => {
+                return Err(self.refuse(fr, Code::E1105, "a dereference (`r^`)"));
+            }
+            Root::This => {
+                return Err(self.refuse(fr, Code::E1105, "`THIS` (a method call)"));
+            }
             Root::Global(g) => Loc::Fixed(self.global(*g)),
             Root::Direct(a) => Loc::Fixed(self.direct(a, p.ty, None)),
         };
@@ -1492,6 +1500,9 @@ impl<'m> Tr<'m> {
 
     fn expr(&mut self, fr: &mut Frame, e: &Expr) -> R<Val> {
         Ok(match &e.kind {
+            ExprKind::Ref(_) | ExprKind::Null => {
+                return Err(self.refuse(fr, Code::E1105, "a reference (REF_TO)"));
+            }
             ExprKind::Const(v) => {
                 let t = self.elem(fr, e.ty)?;
                 Val::S(self.b.konst(t, v.clone()))

@@ -126,6 +126,13 @@ pub(crate) struct Sema<'a> {
     /// Names declared by constructs reported as not supported (an
     /// INTERFACE...): uses of them are not reported again.
     pub unsupported_names: FxHashSet<Symbol>,
+    /// The names of the variables some `REF(...)` of the project refers to
+    /// (at the root of its argument): their values are never propagated,
+    /// since a write through a reference may change them anywhere.
+    pub ref_taken: FxHashSet<Symbol>,
+    /// `REF_TO T` met inside the declaration of the named type `T` (by
+    /// index in `type_decls`): the reference type, completed when `T` is.
+    pub pending_refs: FxHashMap<usize, TypeId>,
     /// Operands of IL `S`/`R` that name function block instances (the
     /// instruction sets that instance's input).
     pub il_fb_inputs: FxHashSet<ExprId>,
@@ -139,6 +146,7 @@ impl<'a> Sema<'a> {
         prelude: Option<Span>,
         opts: Options,
     ) -> Sema<'a> {
+        let ref_taken = ref_taken_names(ast, interner);
         Sema {
             ast,
             interner,
@@ -172,6 +180,8 @@ impl<'a> Sema<'a> {
             partial_index_ok: None,
             global_names: FxHashSet::default(),
             unsupported_names: ast.unsupported_names.iter().map(|n| n.sym).collect(),
+            ref_taken,
+            pending_refs: FxHashMap::default(),
             il_fb_inputs: FxHashSet::default(),
         }
     }
@@ -189,9 +199,19 @@ impl<'a> Sema<'a> {
         }
         self.collect_configs();
         self.global_names = self.globals.iter().map(|g| g.var.name).collect();
+        // A function block's methods before its own body, so that what
+        // they use of the instance is known to its warnings.
         for id in 0..self.pous.len() {
             let id = PouId(id as u32);
-            if let Item::Pou(p) = &self.ast.items[self.pous[id.0 as usize].item] {
+            if self.pous[id.0 as usize].method_of.is_some() {
+                continue;
+            }
+            for m in self.pous[id.0 as usize].methods.clone() {
+                if let Some(src) = self.pou_ast(m) {
+                    self.check_body(m, src);
+                }
+            }
+            if let Some(p) = self.pou_ast(id) {
                 self.check_body(id, p);
             }
         }
@@ -294,7 +314,11 @@ impl<'a> Sema<'a> {
 
     /// The syntax of a POU.
     pub fn pou_ast(&self, p: PouId) -> Option<&'a stc_syntax::ast::Pou> {
-        match self.ast.items.get(self.pous.get(p.0 as usize)?.item)? {
+        let def = self.pous.get(p.0 as usize)?;
+        if let Some((owner, k)) = def.method_of {
+            return self.pou_ast(owner)?.methods.get(k).map(|m| &m.pou);
+        }
+        match self.ast.items.get(def.item)? {
             Item::Pou(pou) => Some(pou),
             _ => None,
         }
@@ -305,6 +329,8 @@ impl<'a> Sema<'a> {
     /// skipped ACTION, METHOD or PROPERTY of that name. Unknown names there
     /// are not reported again.
     pub fn member_may_be_unsupported(&self, p: PouId, name: Symbol) -> bool {
+        // (In a METHOD: what its function block may inherit.)
+        let p = self.pous[p.0 as usize].method_of.map_or(p, |(fb, _)| fb);
         self.pou_ast(p)
             .is_some_and(|a| a.extends.is_some() || self.is_skipped_member(p, name))
     }
@@ -336,4 +362,42 @@ fn edit_distance(a: &str, b: &str) -> usize {
         prev = cur;
     }
     prev[b.len()]
+}
+
+/// The names at the root of every `REF(...)` argument of a project.
+fn ref_taken_names(ast: &Ast, interner: &Interner) -> FxHashSet<Symbol> {
+    use stc_syntax::ast::ExprKind;
+    let mut out = FxHashSet::default();
+    for e in &ast.exprs {
+        let ExprKind::Call { callee, args } = &e.kind else {
+            continue;
+        };
+        let ExprKind::Name(id) = &ast.expr(*callee).kind else {
+            continue;
+        };
+        if interner.key(id.sym) != "REF" {
+            continue;
+        }
+        for a in args.iter() {
+            let mut x = match &a.kind {
+                stc_syntax::ast::ArgKind::Positional(v)
+                | stc_syntax::ast::ArgKind::Input { value: v, .. } => *v,
+                stc_syntax::ast::ArgKind::Output { target, .. } => *target,
+            };
+            loop {
+                match &ast.expr(x).kind {
+                    ExprKind::Paren(b) | ExprKind::Member { base: b, .. } => x = *b,
+                    ExprKind::Index { base, .. } | ExprKind::PartialAccess { base, .. } => {
+                        x = *base
+                    }
+                    ExprKind::Name(n) => {
+                        out.insert(n.sym);
+                        break;
+                    }
+                    _ => break,
+                }
+            }
+        }
+    }
+    out
 }

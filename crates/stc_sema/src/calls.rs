@@ -67,11 +67,20 @@ impl<'a> Sema<'a> {
                         let fb = matches!(self.types.kind(var.ty), TypeKind::Fb(_));
                         fb || var.ty == TypeId::ERROR || !callable_elsewhere
                     }
-                    None => false,
+                    // In a METHOD: an instance of its function block.
+                    None => self.pous[p.0 as usize]
+                        .method_of
+                        .is_some_and(|(fb, _)| self.pous[fb.0 as usize].lookup(id.sym).is_some()),
                 },
                 _ => false,
             };
             if !is_var {
+                // A METHOD of the running instance's function block.
+                if let Scope::Pou(p) = scope {
+                    if let Some(m) = self.own_fb(p).and_then(|fb| self.find_method(fb, id.sym)) {
+                        return self.method_call(e, m, None, args, scope, span, id.span);
+                    }
+                }
                 let shown = self.spelled(id.sym, id.span);
                 match self.names.get(&id.sym).copied() {
                     Some(GlobalName::Pou(q)) => match self.pous[q.0 as usize].kind {
@@ -126,17 +135,39 @@ impl<'a> Sema<'a> {
                     return TypeId::ERROR;
                 }
                 if key == "REF" {
-                    // The 3rd-edition reference operator, like REF_TO.
-                    self.emit(
-                        Diagnostic::new(
-                            Code::E0030,
-                            id.span,
-                            "the reference operator `REF` is not supported yet",
-                        )
-                        .with_label("not supported yet"),
-                    );
-                    self.loose_args(args, scope);
-                    return TypeId::ERROR;
+                    // The 3rd-edition reference operator.
+                    let [Arg {
+                        kind: ArgKind::Positional(x),
+                        ..
+                    }] = args
+                    else {
+                        self.emit(
+                            Diagnostic::new(
+                                Code::E1302,
+                                span,
+                                "REF takes one argument: the variable it refers to",
+                            )
+                            .with_label("`REF(x)`"),
+                        );
+                        self.loose_args(args, scope);
+                        return TypeId::ERROR;
+                    };
+                    let t = self.ref_of(*x, scope);
+                    if t != TypeId::ERROR {
+                        self.calls.insert(
+                            e,
+                            CallInfo {
+                                target: CallTarget::Ref,
+                                args: vec![BoundArg {
+                                    param: 0,
+                                    kind: BoundArgKind::Input(*x),
+                                }],
+                                en: None,
+                                eno: None,
+                            },
+                        );
+                    }
+                    return t;
                 }
                 if self.unsupported_names.contains(&id.sym) {
                     // A POU reported as not supported (a generic function):
@@ -170,6 +201,41 @@ impl<'a> Sema<'a> {
                 return TypeId::ERROR;
             }
         }
+        // `inst.m(...)`: a METHOD of the instance's function block.
+        if let ExprKind::Member { base, member } = &self.ast.expr(callee).kind {
+            let bt = self.check_expr(*base, None, scope);
+            if bt == TypeId::ERROR {
+                self.loose_args(args, scope);
+                return TypeId::ERROR;
+            }
+            if let TypeKind::Fb(fb) = *self.types.kind(bt) {
+                if let Some(m) = self.find_method(fb, member.sym) {
+                    return self.method_call(e, m, Some(*base), args, scope, span, member.span);
+                }
+                let skipped = self.member_may_be_unsupported(fb, member.sym);
+                if self.pous[fb.0 as usize].lookup(member.sym).is_none() && !skipped {
+                    let shown = self.spelled(member.sym, member.span);
+                    let fb_name = self.sym_name(self.pous[fb.0 as usize].name);
+                    let mut d = Diagnostic::new(
+                        Code::E1310,
+                        member.span,
+                        format!("`{fb_name}` has no method `{shown}`"),
+                    )
+                    .with_label("unknown method");
+                    let names: Vec<String> = self.pous[fb.0 as usize]
+                        .methods
+                        .iter()
+                        .map(|q| self.sym_name(self.pous[q.0 as usize].name))
+                        .collect();
+                    if let Some(s) = self.did_you_mean(&shown, names.iter().map(|s| s.as_str())) {
+                        d = d.with_help(format!("did you mean `{s}`?"));
+                    }
+                    self.emit(d);
+                    self.loose_args(args, scope);
+                    return TypeId::ERROR;
+                }
+            }
+        }
         // A variable (or member, element): it must be a function block instance.
         let t = self.check_expr(callee, None, scope);
         if t == TypeId::ERROR {
@@ -194,7 +260,9 @@ impl<'a> Sema<'a> {
                         Section::InOut | Section::External
                     )
                 });
-                if !local_instance {
+                // (A METHOD calls the instances of its function block.)
+                let method = self.pous[p.0 as usize].method_of.is_some();
+                if !local_instance && !method {
                     self.error(
                         Code::E0502,
                         callee_span,
@@ -222,6 +290,49 @@ impl<'a> Sema<'a> {
             return TypeId::ERROR;
         }
         TypeId::VOID
+    }
+
+    /// A call of METHOD `m` on the instance `this` (the running one for
+    /// `None`).
+    #[allow(clippy::too_many_arguments)]
+    fn method_call(
+        &mut self,
+        e: ExprId,
+        m: PouId,
+        this: Option<ExprId>,
+        args: &'a [Arg],
+        scope: Scope,
+        span: Span,
+        name_span: Span,
+    ) -> TypeId {
+        let (fb, _) = self.pous[m.0 as usize].method_of.unwrap_or((m, 0));
+        let private = matches!(
+            self.pous[m.0 as usize].access,
+            Some(stc_syntax::ast::Access::Private | stc_syntax::ast::Access::Protected)
+        );
+        let inside = matches!(scope, Scope::Pou(p) if self.own_fb(p) == Some(fb));
+        if private && !inside {
+            let shown = self.sym_name(self.pous[m.0 as usize].name);
+            let decl = self.pous[m.0 as usize].name_span;
+            self.emit(
+                Diagnostic::new(
+                    Code::E1311,
+                    name_span,
+                    format!("the method `{shown}` is private to its function block"),
+                )
+                .with_secondary(decl, "declared here")
+                .with_help(
+                    "call it from the function block's body or methods, or declare it PUBLIC",
+                ),
+            );
+            self.loose_args(args, scope);
+            return TypeId::ERROR;
+        }
+        let t = self.function_call(e, m, args, scope, span);
+        if let Some(info) = self.calls.get_mut(&e) {
+            info.target = CallTarget::Method { method: m, this };
+        }
+        t
     }
 
     fn function_call(
@@ -431,7 +542,9 @@ impl<'a> Sema<'a> {
             .iter()
             .enumerate()
             .filter(|(i, v)| {
-                v.section == Section::InOut && !given.contains(&crate::VarId(*i as u32))
+                v.section == Section::InOut
+                    && !given.contains(&crate::VarId(*i as u32))
+                    && self.pous[q.0 as usize].this != Some(crate::VarId(*i as u32))
             })
             .map(|(_, v)| self.sym_name(v.name))
             .collect();
@@ -1249,9 +1362,12 @@ impl<'a> Sema<'a> {
                     root = *base
                 }
                 ExprKind::Index { base, .. } => root = *base,
-                // `p^ := v` and a target that did not parse: reported
-                // already; the names in it are still resolved.
-                ExprKind::Deref(_) | ExprKind::Error | ExprKind::IlCr => {
+                // `r^ := v`: the variable a reference refers to (its
+                // errors are the dereference's).
+                ExprKind::Deref(_) => return self.check_expr(target, None, scope),
+                // A target that did not parse: reported already; the names
+                // in it are still resolved.
+                ExprKind::Error | ExprKind::IlCr => {
                     self.check_expr(target, Some(TypeId::ERROR), scope);
                     return TypeId::ERROR;
                 }

@@ -123,85 +123,10 @@ impl<'a> Sema<'a> {
                             );
                         }
                     }
-                    let mut def = PouDef {
-                        kind: p.kind,
-                        name: p.name.sym,
-                        span: p.span,
-                        name_span: p.name.span,
-                        item: i,
-                        vars: Vec::new(),
-                        return_type: None,
-                        is_std: self.in_prelude(p.span),
-                        var_index: FxHashMap::default(),
-                        en: None,
-                        eno: None,
-                    };
-                    let mut src = Vec::new();
-                    if p.kind == PouKind::Function && p.return_type.is_some() {
-                        def.vars.push(VarDef {
-                            name: p.name.sym,
-                            span: p.name.span,
-                            section: Section::Result,
-                            ty: TypeId::ERROR,
-                            init: None,
-                            constant: false,
-                            retain: false,
-                            location: None,
-                            edge: None,
-                            implicit: false,
-                        });
-                        def.var_index.insert(p.name.sym, VarId(0));
-                        src.push(None);
+                    let fb = self.collect_pou(i, p, None);
+                    for (k, m) in p.methods.iter().enumerate() {
+                        self.collect_method(i, fb, k, m);
                     }
-                    for block in &p.var_blocks {
-                        let VarBlockItems::Vars(decls) = &block.items else {
-                            continue;
-                        };
-                        for decl in decls {
-                            for name in &decl.names {
-                                let v = VarId(def.vars.len() as u32);
-                                if let Some(prev) = def.var_index.get(&name.sym) {
-                                    let first = def.vars[prev.0 as usize].span;
-                                    let shown = self.spelled(name.sym, name.span);
-                                    let d = Diagnostic::new(
-                                        Code::E0105,
-                                        name.span,
-                                        format!(
-                                            "`{shown}` is declared twice in `{}`",
-                                            self.sym_name(p.name.sym)
-                                        ),
-                                    )
-                                    .with_label("declared again here")
-                                    .with_secondary(first, "first declared here");
-                                    self.emit(d);
-                                    continue;
-                                }
-                                def.var_index.insert(name.sym, v);
-                                def.vars.push(VarDef {
-                                    name: name.sym,
-                                    span: name.span,
-                                    section: section_of(block.kind),
-                                    ty: TypeId::ERROR,
-                                    init: None,
-                                    constant: block.constant,
-                                    retain: block.retention
-                                        == Some(stc_syntax::ast::Retention::Retain),
-                                    location: decl.location.as_ref().map(|l| l.address.clone()),
-                                    edge: decl.edge,
-                                    implicit: false,
-                                });
-                                src.push(Some(VarSource { block, decl }));
-                            }
-                        }
-                    }
-                    if matches!(p.kind, PouKind::Function | PouKind::FunctionBlock) {
-                        self.add_execution_control(&mut def, &mut src);
-                    }
-                    let n = def.vars.len();
-                    self.pous.push(def);
-                    self.pou_var_src.push(src);
-                    self.pou_var_state.push(vec![State::Todo; n]);
-                    self.pou_state.push(State::Todo);
                 }
                 Item::Configuration(c) => {
                     self.register(c.name, GlobalName::Config(i));
@@ -212,6 +137,176 @@ impl<'a> Sema<'a> {
                 }
             }
         }
+    }
+
+    /// Registers METHOD `k` of function block `fb` as a POU of its own and
+    /// checks its modifiers and name.
+    fn collect_method(&mut self, i: usize, fb: PouId, k: usize, m: &'a stc_syntax::ast::Method) {
+        let name = m.pou.name;
+        let shown = self.spelled(name.sym, name.span);
+        let clash = self.pous[fb.0 as usize]
+            .methods
+            .iter()
+            .find(|q| self.pous[q.0 as usize].name == name.sym)
+            .map(|q| self.pous[q.0 as usize].name_span);
+        if let Some(first) = clash {
+            self.emit(
+                Diagnostic::new(
+                    Code::E1315,
+                    name.span,
+                    format!("method `{shown}` is declared twice"),
+                )
+                .with_secondary(first, "first declared here"),
+            );
+        } else if let Some(v) = self.pous[fb.0 as usize].lookup(name.sym) {
+            let first = self.pous[fb.0 as usize].var(v).span;
+            self.emit(
+                Diagnostic::new(
+                    Code::E1315,
+                    name.span,
+                    format!("method `{shown}` has the name of a variable of its function block"),
+                )
+                .with_secondary(first, "the variable"),
+            );
+        }
+        if m.is_override {
+            self.emit(
+                Diagnostic::new(
+                    Code::E1309,
+                    name.span,
+                    format!("`{shown}` overrides no method: its function block extends none"),
+                )
+                .with_help("remove OVERRIDE"),
+            );
+        }
+        let fb_abstract = self.pou_ast(fb).is_some_and(|a| a.is_abstract);
+        if m.is_abstract && !fb_abstract {
+            self.emit(
+                Diagnostic::new(
+                    Code::E1314,
+                    name.span,
+                    format!("the ABSTRACT method `{shown}` belongs to a function block that is not ABSTRACT"),
+                )
+                .with_help("give the method a body and remove ABSTRACT"),
+            );
+        }
+        let mid = self.collect_pou(i, &m.pou, Some((fb, k)));
+        self.pous[mid.0 as usize].access = m.access;
+        self.pous[fb.0 as usize].methods.push(mid);
+    }
+
+    /// Registers the variables of a POU (or of a METHOD of function block
+    /// `method_of`, which also gets its hidden THIS) as a new POU.
+    fn collect_pou(
+        &mut self,
+        i: usize,
+        p: &'a stc_syntax::ast::Pou,
+        method_of: Option<(PouId, usize)>,
+    ) -> PouId {
+        let id = PouId(self.pous.len() as u32);
+        let mut def = PouDef {
+            kind: p.kind,
+            name: p.name.sym,
+            span: p.span,
+            name_span: p.name.span,
+            item: i,
+            vars: Vec::new(),
+            return_type: None,
+            is_std: self.in_prelude(p.span),
+            var_index: FxHashMap::default(),
+            en: None,
+            eno: None,
+            method_of,
+            this: None,
+            access: None,
+            methods: Vec::new(),
+        };
+        let mut src = Vec::new();
+        if p.kind == PouKind::Function && p.return_type.is_some() {
+            def.vars.push(VarDef {
+                name: p.name.sym,
+                span: p.name.span,
+                section: Section::Result,
+                ty: TypeId::ERROR,
+                init: None,
+                constant: false,
+                retain: false,
+                location: None,
+                edge: None,
+                implicit: false,
+            });
+            def.var_index.insert(p.name.sym, VarId(0));
+            src.push(None);
+        }
+        for block in &p.var_blocks {
+            let VarBlockItems::Vars(decls) = &block.items else {
+                continue;
+            };
+            for decl in decls {
+                for name in &decl.names {
+                    let v = VarId(def.vars.len() as u32);
+                    if let Some(prev) = def.var_index.get(&name.sym) {
+                        let first = def.vars[prev.0 as usize].span;
+                        let shown = self.spelled(name.sym, name.span);
+                        let d = Diagnostic::new(
+                            Code::E0105,
+                            name.span,
+                            format!(
+                                "`{shown}` is declared twice in `{}`",
+                                self.sym_name(p.name.sym)
+                            ),
+                        )
+                        .with_label("declared again here")
+                        .with_secondary(first, "first declared here");
+                        self.emit(d);
+                        continue;
+                    }
+                    def.var_index.insert(name.sym, v);
+                    def.vars.push(VarDef {
+                        name: name.sym,
+                        span: name.span,
+                        section: section_of(block.kind),
+                        ty: TypeId::ERROR,
+                        init: None,
+                        constant: block.constant,
+                        retain: block.retention == Some(stc_syntax::ast::Retention::Retain),
+                        location: decl.location.as_ref().map(|l| l.address.clone()),
+                        edge: decl.edge,
+                        implicit: false,
+                    });
+                    src.push(Some(VarSource { block, decl }));
+                }
+            }
+        }
+        if let Some((fb, _)) = method_of {
+            // The instance the method runs on: a reference, bound by every
+            // call (no EN/ENO: a method call is not gated).
+            let this = VarId(def.vars.len() as u32);
+            let ty = self.pou_type(fb);
+            let sym = self.intern("THIS");
+            def.vars.push(VarDef {
+                name: sym,
+                span: def.name_span,
+                section: Section::InOut,
+                ty,
+                init: None,
+                constant: false,
+                retain: false,
+                location: None,
+                edge: None,
+                implicit: true,
+            });
+            def.this = Some(this);
+            src.push(None);
+        } else if matches!(p.kind, PouKind::Function | PouKind::FunctionBlock) {
+            self.add_execution_control(&mut def, &mut src);
+        }
+        let n = def.vars.len();
+        self.pous.push(def);
+        self.pou_var_src.push(src);
+        self.pou_var_state.push(vec![State::Todo; n]);
+        self.pou_state.push(State::Todo);
+        id
     }
 
     /// EN and ENO (ed2 2.5.1.2): every function and function block has the
@@ -314,12 +409,30 @@ impl<'a> Sema<'a> {
         }
         self.type_decls[i].state = State::InProgress;
         let decl = self.type_decls[i].decl;
-        let (ty, mut init) = self.resolve_type_spec(&decl.spec, Scope::Global, Some(decl.name.sym));
+        let (mut ty, mut init) =
+            self.resolve_type_spec(&decl.spec, Scope::Global, Some(decl.name.sym));
         if self.types.get(ty).name == Some(decl.name.sym) {
             self.types.set_name_span(ty, decl.name.span);
         }
         if let Some(i) = &decl.init {
             init = self.init_value(i, ty, Scope::Global);
+        }
+        // `REF_TO` this type inside its own declaration (a linked list):
+        // the reference made before the type existed now refers to it.
+        if let Some(r) = self.pending_refs.remove(&i) {
+            if r == ty {
+                // `TYPE R : REF_TO R;`: a reference to itself, no type.
+                let name = self.spelled(decl.name.sym, decl.name.span);
+                self.error(
+                    Code::E0102,
+                    decl.name.span,
+                    format!("type `{name}` is defined in terms of itself"),
+                );
+                *self.types.kind_mut(r) = TypeKind::Ref(TypeId::ERROR);
+                ty = TypeId::ERROR;
+            } else {
+                *self.types.kind_mut(r) = TypeKind::Ref(ty);
+            }
         }
         let e = &mut self.type_decls[i];
         e.state = State::Done;
@@ -636,6 +749,27 @@ impl<'a> Sema<'a> {
                     None,
                 )
             }
+            TypeSpecKind::Ref(target) => {
+                // A reference to a named type being declared (`next :
+                // REF_TO Node` inside Node) is completed when the type is.
+                if let TypeSpecKind::Named(id) = &target.kind {
+                    if let Some(GlobalName::Type(i)) = self.names.get(&id.sym).copied() {
+                        if self.type_decls[i].state == State::InProgress {
+                            if let Some(&r) = self.pending_refs.get(&i) {
+                                return (r, None);
+                            }
+                            let r = self.types.add(TypeKind::Ref(TypeId::ERROR), None, None);
+                            self.pending_refs.insert(i, r);
+                            return (r, None);
+                        }
+                    }
+                }
+                let (t, _) = self.resolve_type_spec(target, scope, None);
+                if t == TypeId::ERROR {
+                    return (TypeId::ERROR, None);
+                }
+                (self.types.ref_to(t), None)
+            }
         }
     }
 
@@ -690,6 +824,27 @@ impl<'a> Sema<'a> {
             // Still check the expressions, for their own errors.
             if let InitKind::Expr(e) = &init.kind {
                 self.check_expr(*e, None, scope);
+            }
+            return None;
+        }
+        if matches!(self.types.kind(ty), TypeKind::Ref(_)) {
+            // A reference starts as NULL; no other initial value.
+            let is_null = match &init.kind {
+                InitKind::Expr(e) => {
+                    let t = self.check_expr(*e, Some(ty), scope);
+                    t == TypeId::ERROR || self.types.ref_target(t) == Some(TypeId::VOID)
+                }
+                _ => false,
+            };
+            if !is_null {
+                self.emit(
+                    Diagnostic::new(
+                        Code::E1306,
+                        init.span,
+                        "a reference can only be initialised with NULL",
+                    )
+                    .with_help("assign `r := REF(x);` in the body"),
+                );
             }
             return None;
         }
@@ -870,8 +1025,7 @@ impl<'a> Sema<'a> {
         let scope = Scope::Pou(p);
         let Some(src) = self.pou_var_src[pi][vi] else {
             // A function's result variable.
-            let item = self.pous[pi].item;
-            if let Item::Pou(pou) = &self.ast.items[item] {
+            if let Some(pou) = self.pou_ast(p) {
                 if let Some(rt) = &pou.return_type {
                     let (t, init) = self.resolve_type_spec(rt, scope, None);
                     if matches!(self.types.kind(t), TypeKind::Fb(_) | TypeKind::Program(_)) {
@@ -970,6 +1124,10 @@ impl<'a> Sema<'a> {
             }
         }
         let owned = !matches!(var.section, Section::InOut | Section::External);
+        if self.check_not_abstract(var.ty, owned, src.decl.ty.span) {
+            // Reported once: uses of the variable stay silent.
+            self.pous[p.0 as usize].vars[v.0 as usize].ty = TypeId::ERROR;
+        }
         match self.types.kind(self.innermost_elem(var.ty)) {
             TypeKind::Fb(_) if pou_kind == PouKind::Function && owned => {
                 self.emit(
@@ -995,6 +1153,9 @@ impl<'a> Sema<'a> {
             }
             _ => {}
         }
+        if var.retain && self.type_has_ref(var.ty, 0) {
+            self.retained_ref(var.span);
+        }
         if let Some(loc) = &src.decl.location {
             if pou_kind == PouKind::Function {
                 self.error(
@@ -1006,6 +1167,67 @@ impl<'a> Sema<'a> {
                 self.check_location(loc.span, &loc.address, var.ty);
             }
         }
+    }
+
+    /// Whether a value of type `t` holds a reference (in an element, a
+    /// member or a variable of an instance).
+    pub(crate) fn type_has_ref(&mut self, t: TypeId, depth: u32) -> bool {
+        if depth > 64 {
+            return false;
+        }
+        match self.types.kind(t).clone() {
+            TypeKind::Ref(_) => true,
+            TypeKind::Array { elem, .. } => self.type_has_ref(elem, depth + 1),
+            TypeKind::Struct { fields } => {
+                fields.iter().any(|f| self.type_has_ref(f.ty, depth + 1))
+            }
+            TypeKind::Fb(q) => {
+                let n = self.pous[q.0 as usize].vars.len();
+                (0..n).any(|i| {
+                    let v = crate::VarId(i as u32);
+                    self.ensure_var(q, v);
+                    let ty = self.pous[q.0 as usize].var(v).ty;
+                    self.type_has_ref(ty, depth + 1)
+                })
+            }
+            _ => false,
+        }
+    }
+
+    /// E1316 where a variable of type `t` (or an array of them) would be
+    /// an instance of an ABSTRACT function block (`owned`: not an in-out
+    /// or external, which only refers to one).
+    fn check_not_abstract(&mut self, t: TypeId, owned: bool, span: Span) -> bool {
+        let TypeKind::Fb(fb) = *self.types.kind(self.innermost_elem(t)) else {
+            return false;
+        };
+        if owned && self.pou_ast(fb).is_some_and(|a| a.is_abstract) {
+            let name = self.sym_name(self.pous[fb.0 as usize].name);
+            self.emit(
+                Diagnostic::new(
+                    Code::E1316,
+                    span,
+                    format!("`{name}` is ABSTRACT and cannot be instantiated"),
+                )
+                .with_help("declare a reference to it (`REF_TO`) instead, or remove ABSTRACT"),
+            );
+            return true;
+        }
+        false
+    }
+
+    /// E1308 at a RETAIN variable that holds a reference.
+    fn retained_ref(&mut self, span: Span) {
+        self.emit(
+            Diagnostic::new(
+                Code::E1308,
+                span,
+                "a RETAIN variable cannot hold a reference",
+            )
+            .with_help(
+                "an address does not survive a restart: keep references out of RETAIN variables",
+            ),
+        );
     }
 
     /// The element type of (nested) arrays.
@@ -1122,6 +1344,14 @@ impl<'a> Sema<'a> {
         }
         if let Some(loc) = &src.decl.location {
             self.check_location(loc.span, &loc.address, ty);
+        }
+        let ty = if self.check_not_abstract(ty, true, src.decl.ty.span) {
+            TypeId::ERROR
+        } else {
+            ty
+        };
+        if self.globals[gi].var.retain && self.type_has_ref(ty, 0) {
+            self.retained_ref(self.globals[gi].var.span);
         }
         let var = &mut self.globals[gi].var;
         var.ty = ty;

@@ -15,7 +15,7 @@ use stc_values::{BinOp, UnOp, Value};
 
 use crate::analyzer::{GlobalName, Scope, Sema};
 use crate::types::{Compat, InitValue, TypeId, TypeKind};
-use crate::{GlobalId, GlobalOwner, Res, Section};
+use crate::{GlobalId, GlobalOwner, PouId, Res, Section};
 
 /// The context of a conversion, which decides the diagnostic code.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
@@ -128,11 +128,7 @@ impl<'a> Sema<'a> {
             ExprKind::Unary { op, operand } => self.unary(e, *op, *operand, expected, scope),
             ExprKind::Binary { op, lhs, rhs } => self.binary(e, *op, *lhs, *rhs, expected, scope),
             ExprKind::IlCr => self.body.il_cr.unwrap_or(TypeId::ERROR),
-            ExprKind::Deref(base) => {
-                // `p^`: reported by the parser; the pointer itself is used.
-                self.check_expr(*base, Some(TypeId::ERROR), scope);
-                TypeId::ERROR
-            }
+            ExprKind::Deref(base) => self.deref(*base, span, scope),
             ExprKind::Paren(inner) => {
                 let t = self.check_expr(*inner, expected, scope);
                 if let Some(v) = self.consts.get(inner).cloned() {
@@ -146,6 +142,241 @@ impl<'a> Sema<'a> {
                 t
             }
         }
+    }
+
+    // ----- instances and methods --------------------------------------------
+
+    /// The function block whose instance runs a POU's code: the block
+    /// itself, or the block a METHOD belongs to.
+    pub(crate) fn own_fb(&self, p: PouId) -> Option<PouId> {
+        let def = &self.pous[p.0 as usize];
+        match def.method_of {
+            Some((fb, _)) => Some(fb),
+            None if def.kind == stc_syntax::ast::PouKind::FunctionBlock => Some(p),
+            None => None,
+        }
+    }
+
+    /// The METHOD `name` of function block `fb`.
+    pub(crate) fn find_method(&self, fb: PouId, name: stc_syntax::Symbol) -> Option<PouId> {
+        self.pous[fb.0 as usize]
+            .methods
+            .iter()
+            .copied()
+            .find(|m| self.pous[m.0 as usize].name == name)
+    }
+
+    /// A name in POU `p` that is not one of its own variables: `THIS`,
+    /// `SUPER`, or in a METHOD a variable of its function block (the
+    /// instance's, through `THIS`).
+    fn instance_name(&mut self, e: ExprId, id: Ident, p: PouId) -> Option<TypeId> {
+        let key = self.interner.key(id.sym);
+        if key == "THIS" {
+            let Some(fb) = self.own_fb(p) else {
+                self.emit(
+                    Diagnostic::new(
+                        Code::E1312,
+                        id.span,
+                        "`THIS` is only defined in a FUNCTION_BLOCK and its methods",
+                    )
+                    .with_label("no instance here"),
+                );
+                return Some(TypeId::ERROR);
+            };
+            self.resolutions.insert(e, Res::This);
+            let t = self.pou_type(fb);
+            return Some(self.types.ref_to(t));
+        }
+        if key == "SUPER" {
+            self.emit(
+                Diagnostic::new(
+                    Code::E1313,
+                    id.span,
+                    "`SUPER` refers to the base of a function block, and this one extends none",
+                )
+                .with_help("call the method of this block: `THIS^.m()`"),
+            );
+            return Some(TypeId::ERROR);
+        }
+        let (fb, _) = self.pous[p.0 as usize].method_of?;
+        let v = self.pous[fb.0 as usize].lookup(id.sym)?;
+        self.ensure_var(fb, v);
+        self.resolutions.insert(e, Res::FbMember(fb, v));
+        self.used.insert((fb, v));
+        Some(self.pous[fb.0 as usize].var(v).ty)
+    }
+
+    // ----- references -------------------------------------------------------
+
+    /// `base^`: the variable a reference refers to.
+    fn deref(&mut self, base: ExprId, span: Span, scope: Scope) -> TypeId {
+        let t = self.check_expr(base, None, scope);
+        if t == TypeId::ERROR {
+            return TypeId::ERROR;
+        }
+        match self.types.ref_target(t) {
+            Some(TypeId::VOID) => {
+                self.emit(
+                    Diagnostic::new(Code::E1301, span, "`NULL` cannot be dereferenced")
+                        .with_label("refers to no variable"),
+                );
+                TypeId::ERROR
+            }
+            Some(target) => target,
+            None => {
+                let shown = self.tname(t);
+                self.emit(
+                    Diagnostic::new(
+                        Code::E1301,
+                        span,
+                        format!("`^` dereferences a reference, not a value of type {shown}"),
+                    )
+                    .with_label(format!("this is {shown}"))
+                    .with_help("declare the variable `REF_TO T` and set it with `REF(x)`"),
+                );
+                TypeId::ERROR
+            }
+        }
+    }
+
+    /// `REF(x)`: a reference to the variable `x`. Only memory that lives as
+    /// long as the program may be referred to (globals, the variables of
+    /// program and function block instances, and what a reference refers
+    /// to), so a reference can never outlive its target (docs/oop.md).
+    pub(crate) fn ref_of(&mut self, arg: ExprId, scope: Scope) -> TypeId {
+        let t = self.check_expr(arg, None, scope);
+        if t == TypeId::ERROR {
+            return TypeId::ERROR;
+        }
+        let aspan = self.ast.expr(arg).span;
+        let not_var = |s: &mut Self, why: &str| {
+            s.emit(
+                Diagnostic::new(
+                    Code::E1302,
+                    aspan,
+                    format!("REF needs a variable, not {why}"),
+                )
+                .with_label("has no address"),
+            );
+            TypeId::ERROR
+        };
+        let mut root = arg;
+        loop {
+            match &self.ast.expr(root).kind {
+                ExprKind::Paren(b) | ExprKind::Member { base: b, .. } => root = *b,
+                ExprKind::Index { base, .. } => root = *base,
+                ExprKind::Deref(_) => {
+                    // What a reference refers to lives long enough.
+                    return self.types.ref_to(t);
+                }
+                ExprKind::PartialAccess { .. } => return not_var(self, "a part of a bit string"),
+                ExprKind::Name(_) => break,
+                ExprKind::Address(_) => return not_var(self, "a direct address"),
+                _ => return not_var(self, "the value of an expression"),
+            }
+        }
+        if matches!(self.resolutions.get(&root), Some(Res::EnumValue(..))) {
+            return not_var(self, "an enumeration value");
+        }
+        match self.resolutions.get(&root).copied() {
+            Some(Res::Var(v)) => {
+                let Scope::Pou(p) = scope else {
+                    return not_var(self, "this");
+                };
+                let pou = &self.pous[p.0 as usize];
+                let var = pou.var(v).clone();
+                let function = pou.kind == stc_syntax::ast::PouKind::Function;
+                let shown = self.sym_name(var.name);
+                let why = if function {
+                    Some("a variable of a function, which lives only during its call")
+                } else {
+                    match var.section {
+                        Section::Temp => Some("a VAR_TEMP, which lives only during one call"),
+                        Section::InOut => Some(
+                            "a VAR_IN_OUT, which may stand for a variable that lives only during the call",
+                        ),
+                        _ => None,
+                    }
+                };
+                if let Some(why) = why {
+                    self.emit(
+                        Diagnostic::new(
+                            Code::E1303,
+                            aspan,
+                            format!("REF of `{shown}`: {why}"),
+                        )
+                        .with_secondary(var.span, "declared here")
+                        .with_help(
+                            "refer to a global or to a variable of a PROGRAM or FUNCTION_BLOCK instance",
+                        ),
+                    );
+                    return TypeId::ERROR;
+                }
+                if var.constant {
+                    return self.ref_of_constant(&shown, aspan, var.span);
+                }
+            }
+            Some(Res::Global(g)) => {
+                let gv = self.globals[g.0 as usize].var.clone();
+                if gv.constant {
+                    let shown = self.sym_name(gv.name);
+                    return self.ref_of_constant(&shown, aspan, gv.span);
+                }
+            }
+            _ => return not_var(self, "this"),
+        }
+        self.types.ref_to(t)
+    }
+
+    /// `a = b` and `a <> b` on references (the only operators they have).
+    fn ref_binary(&mut self, op: BinaryOp, lt: TypeId, rt: TypeId, span: Span) -> TypeId {
+        let bool_ty = self.types.elem(ElemType::Bool);
+        if !matches!(op, BinaryOp::Eq | BinaryOp::Ne) {
+            self.emit(
+                Diagnostic::new(
+                    Code::E1307,
+                    span,
+                    "references have no operator but `=` and `<>`",
+                )
+                .with_help("dereference them (`r^`) to work on what they refer to"),
+            );
+            let cmp = matches!(
+                op,
+                BinaryOp::Eq
+                    | BinaryOp::Ne
+                    | BinaryOp::Lt
+                    | BinaryOp::Le
+                    | BinaryOp::Gt
+                    | BinaryOp::Ge
+            );
+            return if cmp { bool_ty } else { TypeId::ERROR };
+        }
+        let fits = self.types.compat(lt, rt, false) == Compat::Same
+            || self.types.compat(rt, lt, false) == Compat::Same;
+        if !fits {
+            let (a, b) = (self.tname(lt), self.tname(rt));
+            self.emit(
+                Diagnostic::new(
+                    Code::E1304,
+                    span,
+                    format!("cannot compare a value of type {a} with one of type {b}"),
+                )
+                .with_help("references compare with references of the same target type, or NULL"),
+            );
+        }
+        bool_ty
+    }
+
+    fn ref_of_constant(&mut self, shown: &str, span: Span, decl: Span) -> TypeId {
+        self.emit(
+            Diagnostic::new(
+                Code::E1305,
+                span,
+                format!("REF of the constant `{shown}`: it could be changed through the reference"),
+            )
+            .with_secondary(decl, "declared CONSTANT here"),
+        );
+        TypeId::ERROR
     }
 
     // ----- literals ---------------------------------------------------------
@@ -530,6 +761,9 @@ impl<'a> Sema<'a> {
                     }
                     return var.ty;
                 }
+                if let Some(t) = self.instance_name(e, id, p) {
+                    return t;
+                }
                 if self.in_type_constant {
                     let top = self.globals.iter().position(|g| {
                         g.var.name == id.sym
@@ -587,16 +821,9 @@ impl<'a> Sema<'a> {
             return TypeId::ERROR;
         }
         if self.interner.key(id.sym) == "NULL" {
-            // The null reference of the 3rd edition, like REF_TO.
-            self.emit(
-                Diagnostic::new(
-                    Code::E0030,
-                    id.span,
-                    "`NULL` references are not supported yet",
-                )
-                .with_label("not supported yet"),
-            );
-            return TypeId::ERROR;
+            // The null reference of the 3rd edition: its type is accepted
+            // by every reference type.
+            return self.types.ref_to(TypeId::VOID);
         }
         let mut d = Diagnostic::new(
             Code::E0101,
@@ -1146,6 +1373,11 @@ impl<'a> Sema<'a> {
                 TypeId::ERROR
             };
         }
+        let lref = matches!(self.types.kind(lt), TypeKind::Ref(_));
+        let rref = matches!(self.types.kind(rt), TypeKind::Ref(_));
+        if lref || rref {
+            return self.ref_binary(op, lt, rt, span);
+        }
         let Some((result, operand)) = self.binary_types(op, l, lt, r, rt, span) else {
             // Reported: not even a comparison's BOOL result is known, so a
             // chain `a >= b <= c` gives one diagnostic.
@@ -1430,8 +1662,24 @@ impl<'a> Sema<'a> {
         if from != to && self.instance_as_value(e, from) {
             return false;
         }
+        let refs = matches!(self.types.kind(from), TypeKind::Ref(_))
+            || matches!(self.types.kind(to), TypeKind::Ref(_));
         match self.types.compat(from, to, self.opts.iec2) {
             Compat::Same => true,
+            Compat::Incompatible if refs => {
+                let (f, t) = (self.tname(from), self.tname(to));
+                let d = Diagnostic::new(
+                    Code::E1304,
+                    span,
+                    format!("{what} of type {t} cannot take a value of type {f}"),
+                )
+                .with_label(format!("this is {f}"))
+                .with_help(
+                    "a reference holds `NULL` or `REF(x)` of a variable `x` of exactly its target type",
+                );
+                self.emit(d);
+                false
+            }
             Compat::Widen => {
                 self.coercions.insert(e, to);
                 true

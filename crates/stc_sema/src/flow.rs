@@ -4,7 +4,7 @@
 
 use rustc_hash::{FxHashMap, FxHashSet};
 use stc_diagnostics::{Code, Diagnostic, Span};
-use stc_syntax::ast::{Arg, ArgKind, ExprId, ExprKind, Item, Pou, PouKind, Stmt, StmtKind};
+use stc_syntax::ast::{Arg, ArgKind, ExprId, ExprKind, Pou, PouKind, Stmt, StmtKind};
 
 use crate::analyzer::{GlobalName, Scope, Sema};
 use crate::types::TypeKind;
@@ -137,9 +137,15 @@ impl<'a> Sema<'a> {
                 );
             }
         }
+        // (An ABSTRACT method has no body to assign its result.)
+        let abstract_method = self.pous[p.0 as usize]
+            .method_of
+            .and_then(|(fb, k)| self.pou_ast(fb)?.methods.get(k))
+            .is_some_and(|m| m.is_abstract);
         let result_known = self.pous[p.0 as usize]
             .return_type
-            .is_some_and(|t| t != crate::TypeId::ERROR);
+            .is_some_and(|t| t != crate::TypeId::ERROR)
+            && !abstract_method;
         if pou.kind == PouKind::Function && result_known && !partial {
             let mut unassigned_return = false;
             let end = match &pou.il {
@@ -581,10 +587,9 @@ impl<'a> Sema<'a> {
     /// outputs) are the POU's API and are not reported.
     fn check_hidden_globals(&mut self, contexts: &[Vec<(usize, usize, Span)>]) {
         for (pi, ctx) in contexts.iter().enumerate() {
-            let partial = match &self.ast.items[self.pous[pi].item] {
-                Item::Pou(ast_pou) => ast_pou.partial,
-                _ => false,
-            };
+            let partial = self
+                .pou_ast(crate::PouId(pi as u32))
+                .is_some_and(|a| a.partial);
             if self.pous[pi].is_std || partial {
                 continue;
             }
@@ -627,9 +632,6 @@ impl<'a> Sema<'a> {
             edges.entry(a).or_default().push((b, s));
         }
         for (pi, pou) in self.pous.iter().enumerate() {
-            if let Item::Pou(ast_pou) = &self.ast.items[pou.item] {
-                let _ = ast_pou;
-            }
             for v in &pou.vars {
                 if v.section == Section::External || v.section == Section::InOut {
                     continue;

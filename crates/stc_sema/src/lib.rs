@@ -123,6 +123,18 @@ pub struct PouDef {
     /// The execution control output ENO (implicit unless declared as a
     /// VAR_OUTPUT): TRUE at the start of every call, assignable in the body.
     pub eno: Option<VarId>,
+    /// For a METHOD: the FUNCTION_BLOCK it belongs to and its position in
+    /// the block's [`stc_syntax::ast::Pou::methods`]. A method is a
+    /// FUNCTION whose last variable, [`PouDef::this`], is the instance.
+    pub method_of: Option<(PouId, usize)>,
+    /// For a METHOD: the hidden VAR_IN_OUT bound to the instance the
+    /// method is called on (`THIS^`); not a positional parameter, not named
+    /// in [`PouDef::var_index`].
+    pub this: Option<VarId>,
+    /// For a METHOD: its access specifier (PUBLIC when none is written).
+    pub access: Option<stc_syntax::ast::Access>,
+    /// For a FUNCTION_BLOCK: its methods, in declaration order.
+    pub methods: Vec<PouId>,
 }
 
 impl PouDef {
@@ -140,7 +152,7 @@ impl PouDef {
     pub fn positional_params(&self) -> Vec<VarId> {
         let control = |i: usize| {
             let v = Some(VarId(i as u32));
-            v == self.en || v == self.eno
+            v == self.en || v == self.eno || v == self.this
         };
         let of = |sections: &[Section]| {
             self.vars
@@ -234,6 +246,9 @@ pub enum Res {
     FbMember(PouId, VarId),
     /// A global of a configuration (only in configuration scope).
     Global(GlobalId),
+    /// `THIS`: the reference to the function block instance whose body
+    /// or method runs.
+    This,
 }
 
 /// A resolved call.
@@ -267,6 +282,12 @@ pub enum CallTarget {
     },
     /// The task clock (`CUR_TIME()`).
     CurTime,
+    /// `REF(x)`: the reference to its one argument, a variable.
+    Ref,
+    /// A METHOD (a function with the hidden in-out [`PouDef::this`]),
+    /// called on the instance `this` denotes (`inst.m()`), or on the
+    /// running instance (`m()` in the block's body or methods) for `None`.
+    Method { method: PouId, this: Option<ExprId> },
 }
 
 #[derive(Clone, Debug)]
@@ -337,6 +358,18 @@ impl Analysis {
             .iter()
             .position(|p| p.name == name)
             .map(|i| PouId(i as u32))
+    }
+
+    /// The syntax of a POU (of a METHOD: inside its function block).
+    pub fn pou_syntax<'a>(&self, ast: &'a Ast, p: PouId) -> Option<&'a stc_syntax::ast::Pou> {
+        let def = self.pous.get(p.0 as usize)?;
+        if let Some((owner, k)) = def.method_of {
+            return self.pou_syntax(ast, owner)?.methods.get(k).map(|m| &m.pou);
+        }
+        match ast.items.get(def.item)? {
+            stc_syntax::ast::Item::Pou(pou) => Some(pou),
+            _ => None,
+        }
     }
 
     pub fn has_errors(&self) -> bool {

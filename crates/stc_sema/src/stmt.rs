@@ -87,6 +87,9 @@ impl<'a> Sema<'a> {
                     // References (in-outs, externals) may change behind a call.
                     let tracked = plain
                         && self.types.scalar(tt).is_some()
+                        && !self
+                            .ref_taken
+                            .contains(&self.pous[p.0 as usize].var(v).name)
                         && !matches!(
                             self.pous[p.0 as usize].var(v).section,
                             crate::Section::InOut | crate::Section::External

@@ -83,6 +83,10 @@ pub enum TypeKind {
     Fb(PouId),
     /// A program type (only instantiated by configurations).
     Program(PouId),
+    /// `REF_TO T`: a reference to a variable of type `T`. One type per
+    /// target type ([`TypeTable::ref_to`]); `Ref(VOID)` is the type of
+    /// `NULL`, which every reference type accepts.
+    Ref(TypeId),
 }
 
 #[derive(Clone, PartialEq, Debug)]
@@ -109,6 +113,7 @@ pub enum InitValue {
 pub struct TypeTable {
     types: Vec<TypeInfo>,
     strings: rustc_hash::FxHashMap<(bool, u32), TypeId>,
+    refs: rustc_hash::FxHashMap<TypeId, TypeId>,
 }
 
 /// How a value of one type can be stored in another.
@@ -134,6 +139,7 @@ impl TypeTable {
         let mut t = TypeTable {
             types: Vec::new(),
             strings: Default::default(),
+            refs: Default::default(),
         };
         t.add(TypeKind::Error, None, None);
         t.add(TypeKind::Void, None, None);
@@ -178,6 +184,25 @@ impl TypeTable {
         let t = self.add(TypeKind::String { wide, len }, None, None);
         self.strings.insert((wide, len), t);
         t
+    }
+
+    /// The type `REF_TO t` (one per target type); `ref_to(VOID)` is the
+    /// type of `NULL`.
+    pub fn ref_to(&mut self, t: TypeId) -> TypeId {
+        if let Some(&r) = self.refs.get(&t) {
+            return r;
+        }
+        let r = self.add(TypeKind::Ref(t), None, None);
+        self.refs.insert(t, r);
+        r
+    }
+
+    /// The target type of a reference type (VOID for `NULL`'s type).
+    pub fn ref_target(&self, t: TypeId) -> Option<TypeId> {
+        match self.kind(t) {
+            TypeKind::Ref(x) => Some(*x),
+            _ => None,
+        }
     }
 
     pub fn get(&self, t: TypeId) -> &TypeInfo {
@@ -253,6 +278,20 @@ impl TypeTable {
                 }
             }
             (TypeKind::Enum { .. }, _) | (_, TypeKind::Enum { .. }) => Compat::Incompatible,
+            (TypeKind::Ref(a), TypeKind::Ref(b)) => {
+                let same = *a == TypeId::VOID
+                    || *a == *b
+                    || *a == TypeId::ERROR
+                    || *b == TypeId::ERROR
+                    || self.compat(*a, *b, false) == Compat::Same
+                        && self.compat(*b, *a, false) == Compat::Same;
+                if same {
+                    Compat::Same
+                } else {
+                    Compat::Incompatible
+                }
+            }
+            (TypeKind::Ref(_), _) | (_, TypeKind::Ref(_)) => Compat::Incompatible,
             _ => match (self.numeric(from), self.numeric(to)) {
                 (Some(a), Some(b)) if a == b => Compat::Same,
                 (Some(a), Some(b)) if stc_values::implicit_widening(a, b) => {
@@ -318,6 +357,8 @@ impl TypeTable {
             }
             TypeKind::Struct { .. } => "STRUCT".into(),
             TypeKind::Fb(_) | TypeKind::Program(_) => "function block".into(),
+            TypeKind::Ref(TypeId::VOID) => "NULL".into(),
+            TypeKind::Ref(t) => format!("REF_TO {}", self.display(*t, interner)),
         }
     }
 }

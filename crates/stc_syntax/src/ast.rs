@@ -106,9 +106,7 @@ pub enum ExprKind {
     },
     /// `( inner )`, kept so the printer can reproduce the source.
     Paren(ExprId),
-    /// `base^`: a pointer or reference dereference, a dialect feature
-    /// already reported as not supported (E0030). The base is kept so the
-    /// variable it names counts as used.
+    /// `base^`: the dereference of a 3rd-edition reference (`REF_TO`).
     Deref(ExprId),
     /// The current result of an Instruction List body (see [`IlInstr`]):
     /// never written by users, made by the parser where an IL instruction
@@ -368,6 +366,8 @@ pub enum TypeSpecKind {
     Struct {
         members: Vec<VarDecl>,
     },
+    /// `REF_TO T`: a reference to a variable of type `T` (3rd edition).
+    Ref(Box<TypeSpec>),
 }
 
 #[derive(Clone, PartialEq, Debug)]
@@ -592,6 +592,46 @@ pub struct Pou {
     /// whether the result is assigned is not known: the warnings that
     /// depend on it (W0104, W0106) are not given.
     pub partial: bool,
+    /// The METHODs of a FUNCTION_BLOCK (3rd edition), in source order.
+    pub methods: Vec<Method>,
+    /// `FUNCTION_BLOCK ABSTRACT`: never instantiated.
+    pub is_abstract: bool,
+    /// `FUNCTION_BLOCK FINAL`.
+    pub is_final: bool,
+}
+
+/// A METHOD of a FUNCTION_BLOCK: a function of its instance, which reads
+/// and writes the instance's variables (and `THIS`).
+#[derive(Clone, PartialEq, Debug)]
+pub struct Method {
+    /// The method as a POU of kind FUNCTION: its name, result type,
+    /// variables and body (`methods` is empty).
+    pub pou: Pou,
+    /// The access specifier as written (`None`: PUBLIC by default).
+    pub access: Option<Access>,
+    pub is_abstract: bool,
+    pub is_final: bool,
+    pub is_override: bool,
+}
+
+/// An access specifier of a METHOD.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Access {
+    Public,
+    Private,
+    Protected,
+    Internal,
+}
+
+impl Access {
+    pub fn keyword(self) -> &'static str {
+        match self {
+            Access::Public => "PUBLIC",
+            Access::Private => "PRIVATE",
+            Access::Protected => "PROTECTED",
+            Access::Internal => "INTERNAL",
+        }
+    }
 }
 
 #[derive(Clone, PartialEq, Debug)]

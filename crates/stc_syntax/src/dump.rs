@@ -112,7 +112,13 @@ impl Dumper<'_> {
 
     fn pou(&mut self, p: &Pou) {
         self.pragmas(&p.pragmas);
-        let mut text = format!("{} {}", p.kind.keyword(), self.name(p.name));
+        let mut text = p.kind.keyword().to_string();
+        for (on, word) in [(p.is_abstract, " ABSTRACT"), (p.is_final, " FINAL")] {
+            if on {
+                text.push_str(word);
+            }
+        }
+        let _ = write!(text, " {}", self.name(p.name));
         if let Some(r) = &p.return_type {
             let _ = write!(text, " : {}", self.type_text(r));
         }
@@ -121,6 +127,33 @@ impl Dumper<'_> {
             let shown = p.var_blocks.len() - p.sfc.as_ref().map_or(0, |s| s.generated_blocks);
             for b in &p.var_blocks[..shown] {
                 d.var_block(b);
+            }
+            for m in &p.methods {
+                let mut head = String::from("Method");
+                if let Some(a) = m.access {
+                    let _ = write!(head, " {}", a.keyword());
+                }
+                for (on, word) in [
+                    (m.is_abstract, "ABSTRACT"),
+                    (m.is_final, "FINAL"),
+                    (m.is_override, "OVERRIDE"),
+                ] {
+                    if on {
+                        let _ = write!(head, " {word}");
+                    }
+                }
+                let _ = write!(head, " {}", d.name(m.pou.name));
+                if let Some(r) = &m.pou.return_type {
+                    let _ = write!(head, " : {}", d.type_text(r));
+                }
+                d.line(m.pou.span, &head);
+                d.nested(|d| {
+                    for b in &m.pou.var_blocks {
+                        d.var_block(b);
+                    }
+                    d.line(m.pou.span, "Body");
+                    d.nested(|d| d.stmts(&m.pou.body));
+                });
             }
             if let Some(sfc) = &p.sfc {
                 d.sfc(sfc);
@@ -472,6 +505,7 @@ impl Dumper<'_> {
                 format!("ARRAY[{}] OF {}", ds.join(", "), self.type_text(elem))
             }
             TypeSpecKind::Struct { members } => format!("STRUCT ({} members)", members.len()),
+            TypeSpecKind::Ref(target) => format!("REF_TO {}", self.type_text(target)),
         }
     }
 

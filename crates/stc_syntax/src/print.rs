@@ -134,7 +134,13 @@ impl Printer<'_> {
 
     fn pou(&mut self, pou: &Pou) {
         self.pragmas(&pou.pragmas);
-        let mut head = format!("{} {}", pou.kind.keyword(), self.name(pou.name));
+        let mut head = pou.kind.keyword().to_string();
+        for (on, word) in [(pou.is_abstract, " ABSTRACT"), (pou.is_final, " FINAL")] {
+            if on {
+                head.push_str(word);
+            }
+        }
+        let _ = write!(head, " {}", self.name(pou.name));
         if let Some(r) = &pou.return_type {
             let _ = write!(head, " : {}", self.type_text(r));
         }
@@ -143,6 +149,9 @@ impl Printer<'_> {
             let shown = pou.var_blocks.len() - pou.sfc.as_ref().map_or(0, |s| s.generated_blocks);
             for b in &pou.var_blocks[..shown] {
                 p.var_block(b);
+            }
+            for m in &pou.methods {
+                p.method(m);
             }
             if let Some(sfc) = &pou.sfc {
                 p.sfc(sfc);
@@ -197,6 +206,34 @@ impl Printer<'_> {
                 }
             }
         }
+    }
+
+    fn method(&mut self, m: &crate::ast::Method) {
+        let mut head = String::from("METHOD");
+        if let Some(a) = m.access {
+            let _ = write!(head, " {}", a.keyword());
+        }
+        for (on, word) in [
+            (m.is_abstract, "ABSTRACT"),
+            (m.is_final, "FINAL"),
+            (m.is_override, "OVERRIDE"),
+        ] {
+            if on {
+                let _ = write!(head, " {word}");
+            }
+        }
+        let _ = write!(head, " {}", self.name(m.pou.name));
+        if let Some(r) = &m.pou.return_type {
+            let _ = write!(head, " : {}", self.type_text(r));
+        }
+        self.line(&head);
+        self.nested(|p| {
+            for b in &m.pou.var_blocks {
+                p.var_block(b);
+            }
+            p.stmts(&m.pou.body);
+        });
+        self.line("END_METHOD");
     }
 
     fn var_block(&mut self, b: &VarBlock) {
@@ -519,6 +556,7 @@ impl Printer<'_> {
                 s.push_str("END_STRUCT");
                 s
             }
+            TypeSpecKind::Ref(target) => format!("REF_TO {}", self.type_text(target)),
         }
     }
 

@@ -286,13 +286,24 @@ fn instr_ok(
     let compares = ["eq.", "ne.", "lt.", "le."]
         .iter()
         .any(|p| mn.starts_with(p));
+    // `lea` writes a 4-byte address of its operand, which may be smaller
+    // (an INT at the end of an instance): only its start must be inside.
+    let lea = matches!(ins, Instr::Lea { .. });
     for (i, (k, &f)) in kinds.iter().zip(fields.iter()).enumerate() {
         match k {
             FieldKind::Target if f < start || f >= end => {
                 return Err(format!("jump to {f} leaves the POU"))
             }
             FieldKind::Op(n) if *n > 0 => {
-                let size = if compares && i == 0 { 1 } else { *n as u64 };
+                let size = if (compares && i == 0) || (lea && i == 1) {
+                    if lea {
+                        0
+                    } else {
+                        1
+                    }
+                } else {
+                    *n as u64
+                };
                 op_ok(img, pou, Op(f), size)?
             }
             _ => {}

@@ -207,6 +207,15 @@ impl<'a> Gen<'a> {
             }
         }
         header.push('\n');
+        // A reference (REF_TO T): the address of its variable, NULL for
+        // none; a dereference casts it to the target's type after checking
+        // it is not NULL. Declared only where used (MISRA C 2.3).
+        let m = self.m;
+        let has_refs =
+            (0..m.types.len() as u32).any(|t| matches!(m.types.kind(TypeId(t)), TypeKind::Ref(_)));
+        if has_refs {
+            header.push_str("typedef void *stc_ref;\n");
+        }
         header.push_str(&self.forward);
         header.push('\n');
         header.push_str(&self.typedefs);
@@ -833,7 +842,8 @@ impl<'a> Gen<'a> {
             TypeKind::Array { elem, .. } => self.init_writes(*elem),
             TypeKind::Struct { fields } => fields.iter().any(|f| self.init_writes(f.ty)),
             TypeKind::Error | TypeKind::Void => false,
-            TypeKind::Elem(_)
+            TypeKind::Ref(_)
+            | TypeKind::Elem(_)
             | TypeKind::String { .. }
             | TypeKind::Subrange { .. }
             | TypeKind::Enum { .. }
@@ -886,6 +896,22 @@ impl<'a> Gen<'a> {
             ),
             Root::Global(g) => (global_lvalue(m, *g), m.globals[*g].ty),
             Root::Direct(a) => (self.io_access(a, m.addr_type(a))?, m.addr_type(a)),
+            // The running function block's instance (only in its body).
+            Root::This => ("(*self)".to_string(), p.ty),
+            Root::Deref(r) => {
+                // The address, checked not to be NULL, as the target type.
+                let target = m.types.ref_target(r.ty).unwrap_or(TypeId::ERROR);
+                self.define_pointee(target);
+                let v = self.expr(r)?;
+                let t = self.new_temp("stc_ref".into());
+                self.line(format!("{t} = {v};"));
+                let site = self.f.site;
+                let code = fault_code(FaultKind::NullReference);
+                self.line(format!(
+                    "if ({t} == NULL) {{ stc_fault({code}U, {site}U); return; }}"
+                ));
+                (format!("(*({} *){t})", names::type_name(m, target)), target)
+            }
         };
         let mut deferred = defer;
         // The bound checks of every index of the place come after all its
@@ -1038,6 +1064,8 @@ impl<'a> Gen<'a> {
             Root::Var(v) => m.pous[self.f.pou].var(*v).ty,
             Root::Global(g) => m.globals[*g].ty,
             Root::Direct(a) => m.addr_type(a),
+            Root::Deref(r) => m.types.ref_target(r.ty)?,
+            Root::This => p.ty,
         };
         for proj in &p.proj {
             ty = match proj {
@@ -1131,6 +1159,27 @@ impl<'a> Gen<'a> {
             ExprKind::Const(v) => self.constant(e.ty, v),
             ExprKind::Load(p) => self.load_place(p),
             ExprKind::CurTime => Ok("stc_clock".into()),
+            ExprKind::Null => Ok("((stc_ref)NULL)".into()),
+            ExprKind::Ref(p) => {
+                let lv = self.place(p, None)?;
+                let t = self.new_temp("stc_ref".into());
+                self.line(format!("{t} = (stc_ref)&{lv};"));
+                Ok(t)
+            }
+            ExprKind::Binary(op @ (stc_values::BinOp::Eq | stc_values::BinOp::Ne), x, y)
+                if m.types.ref_target(x.ty).is_some() =>
+            {
+                let a = self.expr(x)?;
+                let b = self.expr(y)?;
+                let c = if *op == stc_values::BinOp::Eq {
+                    "=="
+                } else {
+                    "!="
+                };
+                let t = self.new_temp("uint8_t".into());
+                self.line(format!("{t} = ({a} {c} {b}) ? 1U : 0U;"));
+                Ok(t)
+            }
             ExprKind::Unary(op, x) => {
                 let a = self.expr(x)?;
                 self.op(Operation::Unary(*op), vec![(a, x.ty)], e.ty)
@@ -1605,7 +1654,8 @@ fn single_index(p: &Place) -> bool {
         .collect();
     let direct = match &p.root {
         Root::Var(_) => true,
-        Root::Global(_) | Root::Direct(_) => true,
+        Root::Global(_) | Root::Direct(_) | Root::This => true,
+        Root::Deref(_) => false,
     };
     direct && indexes.len() == 1 && indexes[0].len() == 1
 }

@@ -14,6 +14,10 @@ use crate::layout::{Layouts, MAX_SIZE};
 use crate::{Module, Place, Root, Storage};
 use stc_sema::idx::Idx;
 
+/// The bytes at address 0 left unused in the data area of a program that
+/// has references, so that 0 is the address of no variable: NULL.
+pub const NULL_GUARD: u32 = 8;
+
 /// Why no model was built.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ModelError {
@@ -131,7 +135,15 @@ impl<'a> Builder<'a> {
             self.model.types.push(TypeDesc::Instance { pou: i as u32 });
             self.model.pous[i].instance_type = t;
         }
-        // Data: process image, globals, program instances.
+        // Data: process image, globals, program instances. A program with
+        // references keeps address 0 free, so no variable has the address
+        // of NULL (the first 8 bytes of its data area are never used).
+        let m = self.m;
+        let has_refs =
+            (0..m.types.len() as u32).any(|t| matches!(m.types.kind(TypeId(t)), TypeKind::Ref(_)));
+        if has_refs {
+            self.data.resize(NULL_GUARD as usize, 0);
+        }
         self.collect_io();
         // Located variables' initial values, once per slot.
         let m = self.m;
@@ -305,6 +317,13 @@ impl<'a> Builder<'a> {
             return r;
         }
         let desc = match self.m.types.kind(t).clone() {
+            // A reference's address is an engine's own: the model shows it
+            // as an opaque value with no member (`{}` in reports), the same
+            // on every engine.
+            TypeKind::Ref(_) => TypeDesc::Struct {
+                name: Some(ref_name(self.m, t)),
+                fields: Vec::new(),
+            },
             TypeKind::Elem(e) => TypeDesc::Scalar(e),
             TypeKind::Subrange { base, lo, hi } => TypeDesc::Subrange { base, lo, hi },
             TypeKind::String { wide, len } => TypeDesc::String { wide, cap: len },
@@ -444,6 +463,8 @@ impl<'a> Builder<'a> {
         ctx: Option<(usize, usize)>,
     ) {
         match self.m.types.kind(t).clone() {
+            // A reference starts as NULL: the zero bytes already there.
+            TypeKind::Ref(_) => {}
             TypeKind::Elem(_)
             | TypeKind::Subrange { .. }
             | TypeKind::Enum { .. }
@@ -751,5 +772,26 @@ impl<'a> Builder<'a> {
             });
         }
         self.model.pous[p.index()].vars = vars;
+    }
+}
+
+/// The name a reference type is shown with in the model (`REF_TO INT`).
+fn ref_name(m: &Module, t: TypeId) -> String {
+    match m.types.kind(t) {
+        TypeKind::Ref(x) if *x == TypeId::VOID => "NULL".into(),
+        TypeKind::Ref(x) => {
+            let inner = match m.type_name(*x) {
+                Some(n) => n.to_string(),
+                None => match m.types.kind(*x) {
+                    TypeKind::Elem(e) => e.name().to_string(),
+                    TypeKind::Ref(_) => ref_name(m, *x),
+                    TypeKind::String { wide: false, .. } => "STRING".into(),
+                    TypeKind::String { wide: true, .. } => "WSTRING".into(),
+                    _ => "?".into(),
+                },
+            };
+            format!("REF_TO {inner}")
+        }
+        _ => String::new(),
     }
 }

@@ -5,10 +5,10 @@ use stc_diagnostics::{Code, Diagnostic, Span};
 
 use super::{is_item_end, is_item_start, is_var_block_start, Parser};
 use crate::ast::{
-    AccessDecl, AccessDirection, ArrayDim, ArrayInitElem, ConfigInit, Configuration, Edge,
-    EnumMember, Init, InitKind, Item, Located, Pou, PouKind, ProgramConfig, ProgramConn, Resource,
-    Retention, SfcBody, StructInitElem, TaskDecl, TypeDecl, TypeSpec, TypeSpecKind, VarBlock,
-    VarBlockItems, VarDecl, VarKind,
+    Access, AccessDecl, AccessDirection, ArrayDim, ArrayInitElem, ConfigInit, Configuration, Edge,
+    EnumMember, Init, InitKind, Item, Located, Method, Pou, PouKind, ProgramConfig, ProgramConn,
+    Resource, Retention, SfcBody, StructInitElem, TaskDecl, TypeDecl, TypeSpec, TypeSpecKind,
+    VarBlock, VarBlockItems, VarDecl, VarKind,
 };
 use crate::literal;
 use crate::token::{ElemType, Keyword, TokenKind};
@@ -108,6 +108,7 @@ impl Parser<'_> {
 
     pub(crate) fn pou(&mut self, kind: PouKind, pragmas: Vec<Span>) -> Option<Pou> {
         let opener = self.bump().span();
+        let (mut is_abstract, mut is_final) = (false, false);
         for modifier in [
             "ABSTRACT",
             "FINAL",
@@ -118,7 +119,11 @@ impl Parser<'_> {
         ] {
             if self.at_word(modifier) && self.nth_kind(1) == TokenKind::Ident {
                 let span = self.bump().span();
-                self.unsupported(span, "access and inheritance modifiers are");
+                match modifier {
+                    "ABSTRACT" if kind == PouKind::FunctionBlock => is_abstract = true,
+                    "FINAL" if kind == PouKind::FunctionBlock => is_final = true,
+                    _ => self.unsupported(span, "access modifiers of a POU are"),
+                }
             }
         }
         let Some(name) = self.name("a name") else {
@@ -171,6 +176,15 @@ impl Parser<'_> {
                 self.bump();
             } else {
                 break;
+            }
+        }
+        let mut methods = Vec::new();
+        if kind == PouKind::FunctionBlock {
+            while !self.aborted && self.at_word("METHOD") && self.nth_kind(1) == TokenKind::Ident {
+                if let Some(m) = self.method() {
+                    methods.push(m);
+                }
+                while self.eat(TokenKind::Semi) {}
             }
         }
         let mut body = Vec::new();
@@ -266,6 +280,85 @@ impl Parser<'_> {
             extends,
             skipped_members: std::mem::take(&mut self.pou_skipped),
             partial: std::mem::take(&mut self.pou_partial),
+            methods,
+            is_abstract,
+            is_final,
+        })
+    }
+
+    /// `METHOD [modifiers] name [: type] variables body END_METHOD`.
+    fn method(&mut self) -> Option<Method> {
+        let opener = self.bump().span();
+        let mut access = None;
+        let (mut is_abstract, mut is_final, mut is_override) = (false, false, false);
+        loop {
+            if self.nth_kind(1) != TokenKind::Ident {
+                break;
+            }
+            let word = self.text_of(self.tok()).to_ascii_uppercase();
+            match word.as_str() {
+                "PUBLIC" => access = Some(Access::Public),
+                "PRIVATE" => access = Some(Access::Private),
+                "PROTECTED" => access = Some(Access::Protected),
+                "INTERNAL" => access = Some(Access::Internal),
+                "ABSTRACT" => is_abstract = true,
+                "FINAL" => is_final = true,
+                "OVERRIDE" => is_override = true,
+                _ => break,
+            }
+            self.bump();
+        }
+        let Some(name) = self.name("a method name") else {
+            self.skip_unsupported("END_METHOD", |k| is_item_end(k) || is_item_start(k));
+            return None;
+        };
+        let return_type = if self.eat(TokenKind::Colon) {
+            Some(self.type_spec())
+        } else {
+            None
+        };
+        let mut var_blocks = Vec::new();
+        while !self.aborted {
+            if self.at_var_block_start() {
+                if let Some(b) = self.var_block() {
+                    var_blocks.push(b);
+                }
+            } else if self.at(TokenKind::Semi) {
+                self.bump();
+            } else {
+                break;
+            }
+        }
+        let outer = std::mem::replace(&mut self.in_method, true);
+        let body = self.stmt_list(false);
+        self.in_method = outer;
+        if self.at_word("END_METHOD") {
+            self.bump();
+        } else {
+            self.expected("`END_METHOD`");
+        }
+        Some(Method {
+            pou: Pou {
+                kind: PouKind::Function,
+                name,
+                return_type,
+                var_blocks,
+                body,
+                il: None,
+                sfc: None,
+                span: opener.to(self.prev().span()),
+                pragmas: Vec::new(),
+                extends: None,
+                skipped_members: Vec::new(),
+                partial: false,
+                methods: Vec::new(),
+                is_abstract: false,
+                is_final: false,
+            },
+            access,
+            is_abstract,
+            is_final,
+            is_override,
         })
     }
 
@@ -744,9 +837,8 @@ impl Parser<'_> {
                     ) =>
             {
                 self.bump();
-                self.unsupported(t.span(), "references (REF_TO) are");
-                self.type_spec();
-                TypeSpecKind::Error
+                let target = self.type_spec();
+                TypeSpecKind::Ref(Box::new(target))
             }
             // `UNION` followed by its first member (or its end), not a type
             // named Union.

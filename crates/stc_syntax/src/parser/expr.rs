@@ -213,7 +213,6 @@ impl Parser<'_> {
                 }
                 TokenKind::Caret => {
                     let span = self.bump().span();
-                    self.unsupported(span, "the dereference `^` is");
                     let depth = self.depth_of(e);
                     e = self.mk(ExprKind::Deref(e), self.expr_span(e).to(span), depth);
                 }

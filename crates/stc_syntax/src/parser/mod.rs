@@ -118,6 +118,7 @@ pub fn parse_file_in(
         superseded: Vec::new(),
         pou_partial: false,
         pou_skipped: Vec::new(),
+        in_method: false,
         reserved_names: Vec::new(),
         unit: UnitPart::Outside,
     };
@@ -239,6 +240,8 @@ pub(crate) struct Parser<'a> {
     pou_partial: bool,
     /// Members of the POU being parsed that were skipped.
     pou_skipped: Vec<Ident>,
+    /// Inside the body of a METHOD: END_METHOD ends its statement list.
+    in_method: bool,
     /// Reserved words declared as names (after their E0022): their uses
     /// (`struct(x := 1);`, `a := struct.q;`) are read as names, so the one
     /// mistake gets one diagnostic, not one more per use.

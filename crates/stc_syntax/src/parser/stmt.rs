@@ -68,6 +68,9 @@ impl Parser<'_> {
             if in_arm && self.at_case_label() {
                 break;
             }
+            if self.in_method && self.at_word("END_METHOD") {
+                break;
+            }
             let before = self.pos;
             if let Some(s) = self.statement() {
                 out.push(s);
@@ -367,7 +370,11 @@ impl Parser<'_> {
             return true;
         }
         for (word, end, what) in [
-            ("METHOD", "END_METHOD", "methods are"),
+            (
+                "METHOD",
+                "END_METHOD",
+                "methods after the statements of a body (declare them before it) are",
+            ),
             ("PROPERTY", "END_PROPERTY", "properties are"),
             ("ACTION", "END_ACTION", "actions are"),
         ] {

@@ -8,8 +8,13 @@ use super::*;
 impl Compiler<'_> {
     // ----- types -------------------------------------------------------------
 
+    /// The elementary type a value is handled as; a reference is its
+    /// 4-byte address, handled as a UDINT (NULL is 0).
     pub(super) fn scalar(&self, t: TypeId) -> Option<ElemType> {
-        self.m.types.scalar(t)
+        match self.m.types.kind(t) {
+            stc_sema::TypeKind::Ref(_) => Some(ElemType::Udint),
+            _ => self.m.types.scalar(t),
+        }
     }
 
     pub(super) fn num(&self, t: TypeId) -> Option<Num> {

@@ -1049,12 +1049,29 @@ impl<'a> Compiler<'a> {
                     internal(format!("{a} without a process image slot"))
                 })?))
             }
+            // The running function block's instance.
+            Root::This => Loc::At(Op::this(0)),
+            Root::Deref(r) => {
+                // The address, checked not to be NULL.
+                let ptr = self.expr(r)?;
+                let zero = self.const_u32(0);
+                let ok = self.emit(cmp_branch(BinOp::Ne, Num::U32, ptr, zero, true));
+                self.emit(Instr::Fault {
+                    kind: fault_code(FaultKind::NullReference),
+                });
+                let here = self.here();
+                self.patch(ok, here);
+                Loc::Ptr { ptr, off: 0 }
+            }
         };
         // The type of the value reached so far, to find offsets.
         let mut ty = match &p.root {
             Root::Var(v) => self.m.pous[self.cur].var(*v).ty,
             Root::Global(g) => self.m.globals[*g].ty,
             Root::Direct(a) => self.m.addr_type(a),
+            Root::Deref(r) => self.m.types.ref_target(r.ty).unwrap_or(TypeId::ERROR),
+            // (Only a variable of the instance follows it: its type.)
+            Root::This => p.ty,
         };
         let mut part = None;
         for proj in &p.proj {
@@ -1171,6 +1188,8 @@ impl<'a> Compiler<'a> {
     fn expr(&mut self, e: &Expr) -> Result<Op, CompileError> {
         match &e.kind {
             ExprKind::Const(v) => Ok(self.konst(e.ty, v)),
+            ExprKind::Null => Ok(self.const_u32(0)),
+            ExprKind::Ref(p) => self.address_of(p),
             ExprKind::Load(p) => {
                 let pl = self.place_lazy(p)?;
                 match (pl.loc, pl.part) {
@@ -1207,7 +1226,7 @@ impl<'a> Compiler<'a> {
     /// Evaluates an expression into `d` (which its subexpressions never use).
     fn expr_into(&mut self, e: &Expr, d: Op) -> Result<(), CompileError> {
         match &e.kind {
-            ExprKind::Const(_) | ExprKind::Load(_) => {
+            ExprKind::Const(_) | ExprKind::Load(_) | ExprKind::Null | ExprKind::Ref(_) => {
                 let a = self.expr(e)?;
                 let size = self.size_of(e.ty);
                 if let TypeKind::String { wide, len } = self.m.types.kind(e.ty) {
@@ -2007,7 +2026,9 @@ fn cmp_branch(op: BinOp, n: Num, a: Op, b: Op, when: bool) -> Instr {
 /// checks or computed indexes (all of which may fault or have effects).
 fn quiet(e: &Expr) -> bool {
     match &e.kind {
-        ExprKind::Const(_) => true,
+        ExprKind::Const(_) | ExprKind::Null => true,
+        // A dereference may fault on NULL.
+        ExprKind::Load(p) if matches!(p.root, Root::Deref(_)) => false,
         ExprKind::Load(p) => p.proj.iter().all(|pr| match pr {
             Proj::Index(idx) => idx
                 .iter()
@@ -2066,15 +2087,21 @@ fn exit_test(s: &Stmt) -> Option<(&Expr, bool)> {
 /// The number of nodes of an expression (to decide whether to repeat it).
 fn expr_size(e: &Expr) -> usize {
     1 + match &e.kind {
-        ExprKind::Const(_) | ExprKind::CurTime => 0,
-        ExprKind::Load(p) => p
-            .proj
-            .iter()
-            .map(|pr| match pr {
-                Proj::Index(idx) => idx.iter().map(|(e, _, _)| expr_size(e)).sum(),
+        ExprKind::Const(_) | ExprKind::CurTime | ExprKind::Null => 0,
+        ExprKind::Load(p) | ExprKind::Ref(p) => {
+            let root = match &p.root {
+                Root::Deref(r) => expr_size(r) + 2,
                 _ => 0,
-            })
-            .sum(),
+            };
+            root + p
+                .proj
+                .iter()
+                .map(|pr| match pr {
+                    Proj::Index(idx) => idx.iter().map(|(e, _, _)| expr_size(e)).sum(),
+                    _ => 0,
+                })
+                .sum::<usize>()
+        }
         ExprKind::Unary(_, x) | ExprKind::Convert(x) => expr_size(x),
         ExprKind::Check { value, .. } => expr_size(value),
         ExprKind::Located { expr, .. } => expr_size(expr),

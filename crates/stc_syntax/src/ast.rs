@@ -686,6 +686,9 @@ pub enum ProgramConn {
 }
 
 #[derive(Clone, PartialEq, Debug)]
+// A file has a handful of items, each built once and never moved in a
+// loop: boxing the POU would buy nothing.
+#[allow(clippy::large_enum_variant)]
 pub enum Item {
     Types(Vec<TypeDecl>, Span),
     Pou(Pou),

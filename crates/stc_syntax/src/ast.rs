@@ -614,6 +614,30 @@ pub struct Method {
     pub is_override: bool,
 }
 
+impl Method {
+    /// The words between `METHOD` and the name, as written in canonical
+    /// form: the access specifier, then ABSTRACT, FINAL, OVERRIDE (each
+    /// with a leading space; empty when there are none).
+    pub fn modifiers(&self) -> String {
+        let mut out = String::new();
+        if let Some(a) = self.access {
+            out.push(' ');
+            out.push_str(a.keyword());
+        }
+        for (on, word) in [
+            (self.is_abstract, "ABSTRACT"),
+            (self.is_final, "FINAL"),
+            (self.is_override, "OVERRIDE"),
+        ] {
+            if on {
+                out.push(' ');
+                out.push_str(word);
+            }
+        }
+        out
+    }
+}
+
 /// An access specifier of a METHOD.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub enum Access {

@@ -129,20 +129,7 @@ impl Dumper<'_> {
                 d.var_block(b);
             }
             for m in &p.methods {
-                let mut head = String::from("Method");
-                if let Some(a) = m.access {
-                    let _ = write!(head, " {}", a.keyword());
-                }
-                for (on, word) in [
-                    (m.is_abstract, "ABSTRACT"),
-                    (m.is_final, "FINAL"),
-                    (m.is_override, "OVERRIDE"),
-                ] {
-                    if on {
-                        let _ = write!(head, " {word}");
-                    }
-                }
-                let _ = write!(head, " {}", d.name(m.pou.name));
+                let mut head = format!("Method{} {}", m.modifiers(), d.name(m.pou.name));
                 if let Some(r) = &m.pou.return_type {
                     let _ = write!(head, " : {}", d.type_text(r));
                 }

@@ -209,20 +209,7 @@ impl Printer<'_> {
     }
 
     fn method(&mut self, m: &crate::ast::Method) {
-        let mut head = String::from("METHOD");
-        if let Some(a) = m.access {
-            let _ = write!(head, " {}", a.keyword());
-        }
-        for (on, word) in [
-            (m.is_abstract, "ABSTRACT"),
-            (m.is_final, "FINAL"),
-            (m.is_override, "OVERRIDE"),
-        ] {
-            if on {
-                let _ = write!(head, " {word}");
-            }
-        }
-        let _ = write!(head, " {}", self.name(m.pou.name));
+        let mut head = format!("METHOD{} {}", m.modifiers(), self.name(m.pou.name));
         if let Some(r) = &m.pou.return_type {
             let _ = write!(head, " : {}", self.type_text(r));
         }

@@ -1203,9 +1203,16 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
             Root::This => self.this,
             Root::Deref(r) => {
                 // The address, checked not to be NULL (as the VM does).
+                let (at, r) = r.located();
                 let v = self.expr_s(r)?;
                 let null = self.b.ins().icmp_imm(IntCC::Equal, v, 0);
+                // A fault at the `^`.
+                let outer = self.site;
+                if let Some(at) = at {
+                    self.site = self.site_of(at);
+                }
                 self.fault_if(null, FaultKind::NullReference);
+                self.site = outer;
                 fixed = false;
                 self.b.ins().uextend(I64, v)
             }

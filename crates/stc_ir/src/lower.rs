@@ -1417,7 +1417,10 @@ impl<'a> Lowerer<'a> {
                 p
             }
             AK::Deref(r) => {
-                let r = self.expr(*r);
+                // The NULL check reports the `^` (the node's last byte).
+                let hi = self.ast.expr(e).span.hi;
+                let at = self.line_col(Span::new(hi.saturating_sub(1), hi));
+                let r = located(at, self.expr(*r));
                 Place {
                     root: Root::Deref(Box::new(r)),
                     proj: vec![],

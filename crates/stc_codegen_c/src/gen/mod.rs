@@ -902,13 +902,19 @@ impl<'a> Gen<'a> {
                 // The address, checked not to be NULL, as the target type.
                 let target = m.types.ref_target(r.ty).unwrap_or(TypeId::ERROR);
                 self.define_pointee(target);
+                // A fault at the `^`, said to be in this body's instance.
+                let (at, r) = r.located();
                 let v = self.expr(r)?;
                 let t = self.new_temp("stc_ref".into());
                 self.line(format!("{t} = {v};"));
-                let site = self.f.site;
+                let site = match at {
+                    Some((line, col)) => self.site_of(line, col),
+                    None => self.f.site,
+                };
                 let code = fault_code(FaultKind::NullReference);
+                let bail = self.bail();
                 self.line(format!(
-                    "if ({t} == NULL) {{ stc_fault({code}U, {site}U); return; }}"
+                    "if ({t} == NULL) {{ stc_fault({code}U, {site}U); {bail} }}"
                 ));
                 (format!("(*({} *){t})", names::type_name(m, target)), target)
             }

@@ -1052,12 +1052,15 @@ impl<'a> Compiler<'a> {
             // The running function block's instance.
             Root::This => Loc::At(Op::this(0)),
             Root::Deref(r) => {
-                // The address, checked not to be NULL.
+                // The address, checked not to be NULL (a fault at the `^`).
+                let (at, r) = r.located();
                 let ptr = self.expr(r)?;
                 let zero = self.const_u32(0);
                 let ok = self.emit(cmp_branch(BinOp::Ne, Num::U32, ptr, zero, true));
-                self.emit(Instr::Fault {
-                    kind: fault_code(FaultKind::NullReference),
+                self.at_pos(at, |c| {
+                    c.emit(Instr::Fault {
+                        kind: fault_code(FaultKind::NullReference),
+                    })
                 });
                 let here = self.here();
                 self.patch(ok, here);

@@ -736,7 +736,8 @@ impl<'a> Gen<'a> {
             StmtKind::Fault(k) => {
                 let site = self.f.site;
                 self.line(format!("stc_fault({}U, {site}U);", fault_code(*k)));
-                self.line("return;".into());
+                let bail = self.bail();
+                self.line(bail);
                 Ok(())
             }
         }

@@ -614,6 +614,14 @@ MatIEC, Beremiz and CODESYS provide them and programs use them. stc accepts
 them with this warning: BOOL gives 0.0 or 1.0; a REAL or LREAL gives TRUE
 when it is not zero (NaN too). `BOOL_TO_INT` then `INT_TO_REAL` is the
 portable spelling.";
+    W0113 Warning "arithmetic on a bit string"
+"`+`, `-`, `*`, `/` or `MOD` is applied to a bit string (BYTE, WORD, DWORD,
+LWORD), which IEC 61131-3 allows only on numbers. CODESYS, TwinCAT and
+OSCAT code do it, and stc accepts it with this warning: the operation is
+the unsigned one of the bit string's width (`DWORD + DWORD` is a DWORD,
+wrapping modulo 2^32 with no overflow warning); with an integer operand
+the bit string of the wider width is the result. The portable spelling
+converts first: `UDINT_TO_DWORD(DWORD_TO_UDINT(a) + 1)`.";
     W1201 Warning "step can never become active"
 "No sequence of transitions leads from the initial step to this step: it
 is never active and its actions never run by it. A step is reached when a

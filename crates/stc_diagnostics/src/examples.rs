@@ -2651,6 +2651,29 @@ END_PROGRAM
 ",
     ),
     (
+        Code::W0113,
+        r"PROGRAM Checksum
+VAR_INPUT
+    data : DWORD;
+END_VAR
+VAR_OUTPUT
+    sum : DWORD;
+END_VAR
+    sum := sum + data;   // W0113
+END_PROGRAM
+",
+        r"PROGRAM Checksum
+VAR_INPUT
+    data : DWORD;
+END_VAR
+VAR_OUTPUT
+    sum : UDINT;
+END_VAR
+    sum := sum + DWORD_TO_UDINT(data);
+END_PROGRAM
+",
+    ),
+    (
         Code::W0112,
         r"PROGRAM Tank
 VAR_INPUT

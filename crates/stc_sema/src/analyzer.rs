@@ -106,6 +106,11 @@ pub(crate) struct Sema<'a> {
 
     pub expr_types: Vec<TypeId>,
     pub coercions: FxHashMap<ExprId, TypeId>,
+    /// The arithmetic expressions on bit strings (W0113) with the index of
+    /// the warning that covers each: a tree of them is reported once, at
+    /// its outermost operation (the inner warnings are dropped, `dropped`).
+    pub bit_arith: FxHashMap<ExprId, usize>,
+    pub dropped: FxHashSet<usize>,
     pub resolutions: FxHashMap<ExprId, Res>,
     pub consts: FxHashMap<ExprId, Value>,
     pub calls: FxHashMap<ExprId, CallInfo>,
@@ -169,6 +174,8 @@ impl<'a> Sema<'a> {
             configs: Vec::new(),
             expr_types: vec![TypeId::ERROR; ast.exprs.len()],
             coercions: FxHashMap::default(),
+            bit_arith: Default::default(),
+            dropped: Default::default(),
             resolutions: FxHashMap::default(),
             consts: FxHashMap::default(),
             calls: FxHashMap::default(),
@@ -244,7 +251,13 @@ impl<'a> Sema<'a> {
             resolutions: self.resolutions,
             consts: self.consts,
             calls: self.calls,
-            diagnostics: self.diags,
+            diagnostics: self
+                .diags
+                .into_iter()
+                .enumerate()
+                .filter(|(i, _)| !self.dropped.contains(i))
+                .map(|(_, d)| d)
+                .collect(),
         }
     }
 

@@ -1378,7 +1378,7 @@ impl<'a> Sema<'a> {
         if lref || rref {
             return self.ref_binary(op, lt, rt, span);
         }
-        let Some((result, operand)) = self.binary_types(op, l, lt, r, rt, span) else {
+        let Some((result, operand)) = self.binary_types(e, op, l, lt, r, rt, span) else {
             // Reported: not even a comparison's BOOL result is known, so a
             // chain `a >= b <= c` gives one diagnostic.
             return TypeId::ERROR;
@@ -1482,8 +1482,10 @@ impl<'a> Sema<'a> {
 
     /// The result type of `lt op rt`, and the common operand type (with the
     /// implicit conversions recorded), or `None` after reporting E0201.
+    #[allow(clippy::too_many_arguments)]
     fn binary_types(
         &mut self,
+        e: ExprId,
         op: BinaryOp,
         l: ExprId,
         lt: TypeId,
@@ -1590,6 +1592,9 @@ impl<'a> Sema<'a> {
                     };
                     return Some((self.types.elem(c), Some(c)));
                 }
+                if let Some(c) = self.bit_arith(e, l, a, r, b, span) {
+                    return Some((self.types.elem(c), Some(c)));
+                }
                 // Time arithmetic.
                 let res = match (op, a, b) {
                     (BinaryOp::Add | BinaryOp::Sub, E::Time, E::Time) => E::Time,
@@ -1611,6 +1616,70 @@ impl<'a> Sema<'a> {
                 Some((self.types.elem(res), None))
             }
         }
+    }
+
+    /// Arithmetic with a bit string operand (BYTE, WORD, DWORD, LWORD), as
+    /// CODESYS allows it: accepted with W0113 (an error under `--std
+    /// iec2`), computed unsigned in the bit string of the wider operand's
+    /// width, the other operand converted to it. `None` when the operands
+    /// are not a bit string and a bit string or integer.
+    fn bit_arith(
+        &mut self,
+        e: ExprId,
+        l: ExprId,
+        a: ElemType,
+        r: ExprId,
+        b: ElemType,
+        span: Span,
+    ) -> Option<ElemType> {
+        use ElemType as E;
+        let bits = |t: ElemType| stc_values::is_bit_string(t) && t != E::Bool;
+        let operand = |t: ElemType| bits(t) || stc_values::is_integer(t);
+        if !(bits(a) || bits(b)) || !operand(a) || !operand(b) || self.opts.iec2 {
+            return None;
+        }
+        let width = stc_values::bits(a).max(stc_values::bits(b));
+        let c = match width {
+            8 => E::Byte,
+            16 => E::Word,
+            32 => E::Dword,
+            _ => E::Lword,
+        };
+        for (e, t) in [(l, a), (r, b)] {
+            if t != c {
+                let ct = self.types.elem(c);
+                self.coercions.insert(e, ct);
+            }
+        }
+        for o in [l, r] {
+            let mut o = o;
+            while let ExprKind::Paren(inner) = self.ast.expr(o).kind {
+                o = inner;
+            }
+            if let Some(&i) = self.bit_arith.get(&o) {
+                self.dropped.insert(i);
+            }
+        }
+        self.bit_arith.insert(e, self.diags.len());
+        self.emit(
+            Diagnostic::new(
+                Code::W0113,
+                span,
+                format!("arithmetic on a bit string: computed as an unsigned {}", c.name()),
+            )
+            .with_label(format!("{} and {}", a.name(), b.name()))
+            .with_help(format!(
+                "the standard allows arithmetic only on numbers: convert with {}_TO_{}(...)",
+                c.name(),
+                match c {
+                    E::Byte => "USINT",
+                    E::Word => "UINT",
+                    E::Dword => "UDINT",
+                    _ => "ULINT",
+                }
+            )),
+        );
+        Some(c)
     }
 
     /// The common type of two operands, recording the implicit conversions;

@@ -622,6 +622,16 @@ the unsigned one of the bit string's width (`DWORD + DWORD` is a DWORD,
 wrapping modulo 2^32 with no overflow warning); with an integer operand
 the bit string of the wider width is the result. The portable spelling
 converts first: `UDINT_TO_DWORD(DWORD_TO_UDINT(a) + 1)`.";
+    W0114 Warning "global variable used without VAR_EXTERNAL"
+"A POU reads or writes a global variable that it does not declare in a
+VAR_EXTERNAL section. IEC 61131-3 requires the declaration; CODESYS and
+TwinCAT make the variables of a global variable list visible everywhere, and
+their libraries rely on it (OSCAT's `SETUP`, `MATH`, `LOG_CL`). stc accepts
+it with this warning for globals declared outside every CONFIGURATION (a
+configuration's globals are bound through VAR_EXTERNAL only), in function
+blocks, programs, functions and methods alike: the name is the global
+itself. Add `VAR_EXTERNAL name : type; END_VAR` to the POU to follow the
+standard; `--std iec2` makes the declaration required.";
     W1201 Warning "step can never become active"
 "No sequence of transitions leads from the initial step to this step: it
 is never active and its actions never run by it. A step is reached when a

@@ -2674,6 +2674,32 @@ END_PROGRAM
 ",
     ),
     (
+        Code::W0114,
+        r"VAR_GLOBAL
+    level : REAL;
+END_VAR
+PROGRAM Tank
+VAR_OUTPUT
+    full : BOOL;
+END_VAR
+    full := level > 95.0;   // W0114
+END_PROGRAM
+",
+        r"VAR_GLOBAL
+    level : REAL;
+END_VAR
+PROGRAM Tank
+VAR_EXTERNAL
+    level : REAL;
+END_VAR
+VAR_OUTPUT
+    full : BOOL;
+END_VAR
+    full := level > 95.0;
+END_PROGRAM
+",
+    ),
+    (
         Code::W0112,
         r"PROGRAM Tank
 VAR_INPUT

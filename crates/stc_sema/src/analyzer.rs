@@ -111,6 +111,8 @@ pub(crate) struct Sema<'a> {
     /// its outermost operation (the inner warnings are dropped, `dropped`).
     pub bit_arith: FxHashMap<ExprId, usize>,
     pub dropped: FxHashSet<usize>,
+    /// The globals read without VAR_EXTERNAL (W0114), per POU.
+    pub implicit_globals: FxHashSet<(PouId, stc_syntax::Symbol)>,
     pub resolutions: FxHashMap<ExprId, Res>,
     pub consts: FxHashMap<ExprId, Value>,
     pub calls: FxHashMap<ExprId, CallInfo>,
@@ -176,6 +178,7 @@ impl<'a> Sema<'a> {
             coercions: FxHashMap::default(),
             bit_arith: Default::default(),
             dropped: Default::default(),
+            implicit_globals: Default::default(),
             resolutions: FxHashMap::default(),
             consts: FxHashMap::default(),
             calls: FxHashMap::default(),

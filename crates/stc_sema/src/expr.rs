@@ -825,6 +825,9 @@ impl<'a> Sema<'a> {
             // by every reference type.
             return self.types.ref_to(TypeId::VOID);
         }
+        if let Some(t) = self.implicit_global(e, id, scope) {
+            return t;
+        }
         let mut d = Diagnostic::new(
             Code::E0101,
             id.span,
@@ -889,6 +892,47 @@ impl<'a> Sema<'a> {
             .with_label(format!("not {what}")),
         );
         true
+    }
+
+    /// A name no declaration of the POU binds that is a global declared
+    /// outside every configuration: read as if a VAR_EXTERNAL declared it,
+    /// as CODESYS and TwinCAT do for their global variable lists (W0114,
+    /// once per POU and name; an error under `--std iec2`, which keeps
+    /// E0101).
+    fn implicit_global(&mut self, e: ExprId, id: Ident, scope: Scope) -> Option<TypeId> {
+        let Scope::Pou(p) = scope else {
+            return None;
+        };
+        if self.opts.iec2 || self.in_type_constant {
+            return None;
+        }
+        let g = self
+            .globals
+            .iter()
+            .position(|g| g.var.name == id.sym && g.owner == GlobalOwner::TopLevel)?;
+        if self.implicit_globals.insert((p, id.sym)) {
+            let shown = self.spelled(id.sym, id.span);
+            let gspan = self.globals[g].var.span;
+            let pou = self.sym_name(self.pous[p.0 as usize].name);
+            let constant = if self.globals[g].var.constant {
+                " CONSTANT"
+            } else {
+                ""
+            };
+            self.emit(
+                Diagnostic::new(
+                    Code::W0114,
+                    id.span,
+                    format!("global variable `{shown}` used without VAR_EXTERNAL"),
+                )
+                .with_label("a global, not declared in this POU")
+                .with_secondary(gspan, "declared here")
+                .with_help(format!(
+                    "declare it in `{pou}`: VAR_EXTERNAL{constant} {shown} : ...; END_VAR"
+                )),
+            );
+        }
+        Some(self.global_ref(e, GlobalId(g as u32)))
     }
 
     fn global_ref(&mut self, e: ExprId, g: GlobalId) -> TypeId {

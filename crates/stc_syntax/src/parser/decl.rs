@@ -132,6 +132,8 @@ impl Parser<'_> {
         };
         self.pou_partial = false;
         self.pou_skipped.clear();
+        self.late_methods.clear();
+        self.pou_kind = Some(kind);
         let mut extends = None;
         if kind == PouKind::FunctionBlock {
             // `EXTENDS Base` names one (possibly qualified) base, `IMPLEMENTS
@@ -267,6 +269,8 @@ impl Parser<'_> {
             self.eat(TokenKind::Semi);
             body.extend(self.stmt_list(false));
         }
+        methods.append(&mut self.late_methods);
+        self.pou_kind = None;
         Some(Pou {
             kind,
             name,
@@ -287,7 +291,7 @@ impl Parser<'_> {
     }
 
     /// `METHOD [modifiers] name [: type] variables body END_METHOD`.
-    fn method(&mut self) -> Option<Method> {
+    pub(crate) fn method(&mut self) -> Option<Method> {
         let opener = self.bump().span();
         let mut access = None;
         let (mut is_abstract, mut is_final, mut is_override) = (false, false, false);

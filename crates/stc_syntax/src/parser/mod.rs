@@ -23,7 +23,7 @@ mod stmt;
 
 use stc_diagnostics::{Code, Diagnostic, Span};
 
-use crate::ast::{Ast, ExprId, ExprKind, Ident, Item};
+use crate::ast::{Ast, ExprId, ExprKind, Ident, Item, Method, PouKind};
 use crate::intern::Interner;
 use crate::lexer::{lex, Trivia, TriviaKind};
 use crate::token::{ElemType, Keyword, Token, TokenKind};
@@ -118,6 +118,8 @@ pub fn parse_file_in(
         superseded: Vec::new(),
         pou_partial: false,
         pou_skipped: Vec::new(),
+        pou_kind: None,
+        late_methods: Vec::new(),
         in_method: false,
         reserved_names: Vec::new(),
         unit: UnitPart::Outside,
@@ -242,6 +244,11 @@ pub(crate) struct Parser<'a> {
     pou_skipped: Vec<Ident>,
     /// Inside the body of a METHOD: END_METHOD ends its statement list.
     in_method: bool,
+    /// The kind of the POU whose body is being parsed.
+    pou_kind: Option<PouKind>,
+    /// METHODs written after the statements of a function block's body (a
+    /// CODESYS and TwinCAT export shape): added to its methods.
+    late_methods: Vec<Method>,
     /// Reserved words declared as names (after their E0022): their uses
     /// (`struct(x := 1);`, `a := struct.q;`) are read as names, so the one
     /// mistake gets one diagnostic, not one more per use.

@@ -14,7 +14,7 @@
 use stc_diagnostics::{Code, Diagnostic, Span};
 
 use super::{is_item_end, is_item_start, is_var_block_start, Open, Parser};
-use crate::ast::{CaseArm, CaseLabel, CondBranch, ExprKind, Stmt, StmtKind};
+use crate::ast::{CaseArm, CaseLabel, CondBranch, ExprKind, PouKind, Stmt, StmtKind};
 use crate::token::{Keyword, TokenKind};
 
 /// Tokens at which a statement list stops.
@@ -369,11 +369,24 @@ impl Parser<'_> {
             self.superseded.push(span.to(self.prev().span()));
             return true;
         }
+        if self.at_word("METHOD")
+            && self.nth_kind(1) == TokenKind::Ident
+            && self.pou_kind == Some(PouKind::FunctionBlock)
+            && !self.in_method
+        {
+            // A METHOD after the statements of its block's body, as CODESYS
+            // and TwinCAT exports place them: one of its methods.
+            if let Some(m) = self.method() {
+                self.late_methods.push(m);
+            }
+            while self.eat(TokenKind::Semi) {}
+            return true;
+        }
         for (word, end, what) in [
             (
                 "METHOD",
                 "END_METHOD",
-                "methods after the statements of a body (declare them before it) are",
+                "methods outside a function block are",
             ),
             ("PROPERTY", "END_PROPERTY", "properties are"),
             ("ACTION", "END_ACTION", "actions are"),

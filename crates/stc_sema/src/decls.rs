@@ -144,6 +144,7 @@ impl<'a> Sema<'a> {
     fn collect_method(&mut self, i: usize, fb: PouId, k: usize, m: &'a stc_syntax::ast::Method) {
         let name = m.pou.name;
         let shown = self.spelled(name.sym, name.span);
+        let what = if m.is_action { "action" } else { "method" };
         let clash = self.pous[fb.0 as usize]
             .methods
             .iter()
@@ -154,7 +155,7 @@ impl<'a> Sema<'a> {
                 Diagnostic::new(
                     Code::E1315,
                     name.span,
-                    format!("method `{shown}` is declared twice"),
+                    format!("{what} `{shown}` is declared twice"),
                 )
                 .with_secondary(first, "first declared here"),
             );
@@ -164,7 +165,7 @@ impl<'a> Sema<'a> {
                 Diagnostic::new(
                     Code::E1315,
                     name.span,
-                    format!("method `{shown}` has the name of a variable of its function block"),
+                    format!("{what} `{shown}` has the name of a variable of its POU"),
                 )
                 .with_secondary(first, "the variable"),
             );

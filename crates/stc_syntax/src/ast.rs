@@ -612,6 +612,10 @@ pub struct Method {
     pub is_abstract: bool,
     pub is_final: bool,
     pub is_override: bool,
+    /// An ACTION of the function block (`ACTION name: statements
+    /// END_ACTION`): a method with no variables, no result and no
+    /// modifiers, written after the body.
+    pub is_action: bool,
 }
 
 impl Method {

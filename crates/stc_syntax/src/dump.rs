@@ -129,7 +129,8 @@ impl Dumper<'_> {
                 d.var_block(b);
             }
             for m in &p.methods {
-                let mut head = format!("Method{} {}", m.modifiers(), d.name(m.pou.name));
+                let word = if m.is_action { "Action" } else { "Method" };
+                let mut head = format!("{word}{} {}", m.modifiers(), d.name(m.pou.name));
                 if let Some(r) = &m.pou.return_type {
                     let _ = write!(head, " : {}", d.type_text(r));
                 }

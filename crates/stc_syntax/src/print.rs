@@ -150,13 +150,18 @@ impl Printer<'_> {
             for b in &pou.var_blocks[..shown] {
                 p.var_block(b);
             }
-            for m in &pou.methods {
+            for m in pou.methods.iter().filter(|m| !m.is_action) {
                 p.method(m);
             }
             if let Some(sfc) = &pou.sfc {
                 p.sfc(sfc);
             } else {
                 p.stmts(&pou.body);
+            }
+            for m in pou.methods.iter().filter(|m| m.is_action) {
+                p.line(&format!("ACTION {}:", p.name(m.pou.name)));
+                p.nested(|p| p.stmts(&m.pou.body));
+                p.line("END_ACTION");
             }
             if let Some(il) = &pou.il {
                 let mut lines = Vec::new();

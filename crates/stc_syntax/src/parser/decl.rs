@@ -363,6 +363,50 @@ impl Parser<'_> {
             is_abstract,
             is_final,
             is_override,
+            is_action: false,
+        })
+    }
+
+    /// `ACTION name [:] statements END_ACTION` after the body of a function
+    /// block: a method without variables or result.
+    pub(crate) fn action(&mut self) -> Option<Method> {
+        let opener = self.bump().span();
+        let Some(name) = self.name("an action name") else {
+            self.skip_unsupported("END_ACTION", |k| is_item_end(k) || is_item_start(k));
+            return None;
+        };
+        self.eat(TokenKind::Colon);
+        let outer = std::mem::replace(&mut self.in_action, true);
+        let body = self.stmt_list(false);
+        self.in_action = outer;
+        if self.at_word("END_ACTION") {
+            self.bump();
+        } else {
+            self.expected("`END_ACTION`");
+        }
+        Some(Method {
+            pou: Pou {
+                kind: PouKind::Function,
+                name,
+                return_type: None,
+                var_blocks: Vec::new(),
+                body,
+                il: None,
+                sfc: None,
+                span: opener.to(self.prev().span()),
+                pragmas: Vec::new(),
+                extends: None,
+                skipped_members: Vec::new(),
+                partial: false,
+                methods: Vec::new(),
+                is_abstract: false,
+                is_final: false,
+            },
+            access: None,
+            is_abstract: false,
+            is_final: false,
+            is_override: false,
+            is_action: true,
         })
     }
 

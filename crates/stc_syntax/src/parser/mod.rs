@@ -121,6 +121,7 @@ pub fn parse_file_in(
         pou_kind: None,
         late_methods: Vec::new(),
         in_method: false,
+        in_action: false,
         reserved_names: Vec::new(),
         unit: UnitPart::Outside,
     };
@@ -244,6 +245,8 @@ pub(crate) struct Parser<'a> {
     pou_skipped: Vec<Ident>,
     /// Inside the body of a METHOD: END_METHOD ends its statement list.
     in_method: bool,
+    /// Inside the body of an ACTION: END_ACTION ends its statement list.
+    in_action: bool,
     /// The kind of the POU whose body is being parsed.
     pou_kind: Option<PouKind>,
     /// METHODs written after the statements of a function block's body (a

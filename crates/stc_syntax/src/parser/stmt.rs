@@ -71,6 +71,9 @@ impl Parser<'_> {
             if self.in_method && self.at_word("END_METHOD") {
                 break;
             }
+            if self.in_action && self.at_word("END_ACTION") {
+                break;
+            }
             let before = self.pos;
             if let Some(s) = self.statement() {
                 out.push(s);
@@ -382,6 +385,19 @@ impl Parser<'_> {
             while self.eat(TokenKind::Semi) {}
             return true;
         }
+        if self.at_word("ACTION")
+            && matches!(self.nth_kind(1), TokenKind::Ident)
+            && self.pou_kind == Some(PouKind::FunctionBlock)
+            && !self.in_method
+            && !self.in_action
+        {
+            // An ACTION of the function block, after its body.
+            if let Some(m) = self.action() {
+                self.late_methods.push(m);
+            }
+            while self.eat(TokenKind::Semi) {}
+            return true;
+        }
         for (word, end, what) in [
             (
                 "METHOD",
@@ -389,7 +405,7 @@ impl Parser<'_> {
                 "methods outside a function block are",
             ),
             ("PROPERTY", "END_PROPERTY", "properties are"),
-            ("ACTION", "END_ACTION", "actions are"),
+            ("ACTION", "END_ACTION", "actions outside a function block are"),
         ] {
             if self.at_word(word) && self.nth_kind(1) == TokenKind::Ident {
                 let span = self.tok().span();

@@ -1709,7 +1709,10 @@ impl<'a> Sema<'a> {
             Diagnostic::new(
                 Code::W0113,
                 span,
-                format!("arithmetic on a bit string: computed as an unsigned {}", c.name()),
+                format!(
+                    "arithmetic on a bit string: computed as an unsigned {}",
+                    c.name()
+                ),
             )
             .with_label(format!("{} and {}", a.name(), b.name()))
             .with_help(format!(

@@ -405,7 +405,11 @@ impl Parser<'_> {
                 "methods outside a function block are",
             ),
             ("PROPERTY", "END_PROPERTY", "properties are"),
-            ("ACTION", "END_ACTION", "actions outside a function block are"),
+            (
+                "ACTION",
+                "END_ACTION",
+                "actions outside a function block are",
+            ),
         ] {
             if self.at_word(word) && self.nth_kind(1) == TokenKind::Ident {
                 let span = self.tok().span();

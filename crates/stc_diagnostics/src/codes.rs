@@ -632,6 +632,16 @@ configuration's globals are bound through VAR_EXTERNAL only), in function
 blocks, programs, functions and methods alike: the name is the global
 itself. Add `VAR_EXTERNAL name : type; END_VAR` to the POU to follow the
 standard; `--std iec2` makes the declaration required.";
+    W0115 Warning "in-out of an instance read from outside"
+"A VAR_IN_OUT of a function block instance is read from outside it
+(`out := rmp.RMP;`). The standard makes an in-out visible only inside
+the instance; MatIEC accepts the read, and OSCAT code for OpenPLC relies
+on it. stc reads it with this warning: it is the variable that the last
+call of the instance passed (the in-out keeps that address between calls);
+before the instance's first call it refers to nothing, and reading it is
+the run-time fault `NULL dereference`. Writing it from outside stays an
+error (E0104), and `--std iec2` refuses the read as well. Read the
+variable the call passes instead.";
     W1201 Warning "step can never become active"
 "No sequence of transitions leads from the initial step to this step: it
 is never active and its actions never run by it. A step is reached when a

@@ -2700,6 +2700,41 @@ END_PROGRAM
 ",
     ),
     (
+        Code::W0115,
+        r"FUNCTION_BLOCK Ramp
+VAR_IN_OUT
+    level : REAL;
+END_VAR
+    level := level + 1.0;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR
+    r : Ramp;
+    x : REAL;
+    y : REAL;
+END_VAR
+    r(level := x);
+    y := r.level;   // W0115
+END_PROGRAM
+",
+        r"FUNCTION_BLOCK Ramp
+VAR_IN_OUT
+    level : REAL;
+END_VAR
+    level := level + 1.0;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR
+    r : Ramp;
+    x : REAL;
+    y : REAL;
+END_VAR
+    r(level := x);
+    y := x;
+END_PROGRAM
+",
+    ),
+    (
         Code::W0112,
         r"PROGRAM Tank
 VAR_INPUT

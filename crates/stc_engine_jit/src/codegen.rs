@@ -1241,7 +1241,20 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                 Proj::FbVar(fb, v) => {
                     let off = self.g.l.var_offset(*fb, *v);
                     addr = self.b.ins().iadd_imm(addr, i64::from(off));
-                    ty = m.pous[*fb].var(*v).ty;
+                    let var = m.pous[*fb].var(*v);
+                    ty = var.ty;
+                    if var.storage == Storage::Ref {
+                        // Through the slot (as the VM does): an in-out's is
+                        // NULL until a call of the instance binds it.
+                        let p = self.native(addr);
+                        let a = self.b.ins().load(I32, MemFlags::new(), p, 0);
+                        if var.section == Section::InOut {
+                            let null = self.b.ins().icmp_imm(IntCC::Equal, a, 0);
+                            self.fault_if(null, FaultKind::NullReference);
+                        }
+                        addr = self.b.ins().uextend(I64, a);
+                        fixed = false;
+                    }
                 }
                 Proj::Index(idx) => {
                     let (dims, elem) = match m.types.kind(ty) {

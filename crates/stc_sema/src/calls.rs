@@ -1356,6 +1356,7 @@ impl<'a> Sema<'a> {
         // The variable at the root of `a.b[i].c`.
         let mut root = target;
         let mut through_fb_output = None;
+        let mut through_fb_in_out = None;
         loop {
             match &self.ast.expr(root).kind {
                 ExprKind::Member { base, .. } | ExprKind::PartialAccess { base, .. } => {
@@ -1421,8 +1422,10 @@ impl<'a> Sema<'a> {
             match &self.ast.expr(e).kind {
                 ExprKind::Member { base, .. } => {
                     if let Some(Res::FbMember(fb, v)) = self.resolutions.get(&e).copied() {
-                        if self.pous[fb.0 as usize].var(v).section == Section::Output {
-                            through_fb_output = Some(e);
+                        match self.pous[fb.0 as usize].var(v).section {
+                            Section::Output => through_fb_output = Some(e),
+                            Section::InOut => through_fb_in_out = Some(e),
+                            _ => {}
                         }
                     }
                     e = *base;
@@ -1430,6 +1433,28 @@ impl<'a> Sema<'a> {
                 ExprKind::PartialAccess { base, .. } | ExprKind::Index { base, .. } => e = *base,
                 _ => break,
             }
+        }
+        if let Some(m) = through_fb_in_out {
+            let mspan = self.ast.expr(m).span;
+            // The W0115 of reading it says nothing more than this.
+            let read = self.diags.iter().rposition(|d| {
+                d.code == Code::W0115 && mspan.lo <= d.span.lo && d.span.hi <= mspan.hi
+            });
+            if let Some(i) = read {
+                self.dropped.insert(i);
+            }
+            self.emit(
+                Diagnostic::new(
+                    Code::E0104,
+                    mspan,
+                    "the in-out of a function block instance cannot be written from outside",
+                )
+                .with_label("VAR_IN_OUT")
+                .with_note(
+                    "it refers to the variable the last call passed: write that variable instead",
+                ),
+            );
+            return TypeId::ERROR;
         }
         if let Some(m) = through_fb_output {
             let mspan = self.ast.expr(m).span;

@@ -191,6 +191,11 @@ impl<'a> Sema<'a> {
                 .with_help("give the method a body and remove ABSTRACT"),
             );
         }
+        // A method reaches its block's in-outs through their slots, NULL
+        // until a call binds them: with a reference type in the program,
+        // address 0 is never a variable's (docs/oop.md).
+        let fb_type = self.pou_type(fb);
+        self.types.ref_to(fb_type);
         let mid = self.collect_pou(i, &m.pou, Some((fb, k)));
         self.pous[mid.0 as usize].access = m.access;
         self.pous[fb.0 as usize].methods.push(mid);

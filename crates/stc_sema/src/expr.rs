@@ -1129,6 +1129,26 @@ impl<'a> Sema<'a> {
                         // an EXTENDS: already reported at its declaration.
                         TypeId::ERROR
                     }
+                    Some(v) if pou.var(v).section == Section::InOut && !self.opts.iec2 => {
+                        // Read through the address the last call bound, as
+                        // MatIEC allows (W0115); NULL before the first call,
+                        // a run-time fault. Writes are refused (E0104, in
+                        // `check_lvalue`).
+                        let ty = pou.var(v).ty;
+                        let msg = format!(
+                            "`{shown}` is an in-out of `{}`, read from outside the instance",
+                            self.tname(bt)
+                        );
+                        self.emit(
+                            Diagnostic::new(Code::W0115, member.span, msg)
+                                .with_label("VAR_IN_OUT")
+                                .with_note("it is the variable the last call of the instance passed; before the first call, reading it is the fault `NULL dereference`"),
+                        );
+                        // The slot is an address: keep address 0 free.
+                        self.types.ref_to(ty);
+                        self.resolutions.insert(e, Res::FbMember(p, v));
+                        ty
+                    }
                     Some(v) if pou.var(v).section == Section::InOut => {
                         let msg = format!(
                             "`{shown}` is an in-out of `{}`, which is not visible from outside",
@@ -1137,7 +1157,7 @@ impl<'a> Sema<'a> {
                         self.emit(
                             Diagnostic::new(Code::E0104, member.span, msg)
                                 .with_label("VAR_IN_OUT")
-                                .with_note("a VAR_IN_OUT refers to the caller's variable during a call only: use that variable instead"),
+                                .with_note("a VAR_IN_OUT refers to the caller's variable during a call only: use that variable instead (`--std iec2` refuses reading it from outside)"),
                         );
                         TypeId::ERROR
                     }

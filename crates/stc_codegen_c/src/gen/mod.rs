@@ -941,6 +941,17 @@ impl<'a> Gen<'a> {
                     let var = m.pous[*fb].var(*v);
                     let name = names::var_name(m, *v, var);
                     lv = if var.storage == Storage::Ref {
+                        if var.section == Section::InOut {
+                            // NULL until a call of the instance binds it.
+                            let t = self.new_temp("const void *".into());
+                            self.line(format!("{t} = (const void *){lv}.{name};"));
+                            let code = fault_code(FaultKind::NullReference);
+                            let site = self.f.site;
+                            let bail = self.bail();
+                            self.line(format!(
+                                "if ({t} == NULL) {{ stc_fault({code}U, {site}U); {bail} }}"
+                            ));
+                        }
                         format!("(*{lv}.{name})")
                     } else {
                         format!("{lv}.{name}")

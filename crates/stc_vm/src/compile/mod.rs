@@ -1093,7 +1093,27 @@ impl<'a> Compiler<'a> {
                 Proj::FbVar(fb, v) => {
                     let off = self.l.var_offset(*fb, *v);
                     loc = offset_loc(loc, off);
-                    ty = self.m.pous[*fb].var(*v).ty;
+                    let var = self.m.pous[*fb].var(*v);
+                    ty = var.ty;
+                    if var.storage == Storage::Ref {
+                        // Through the slot: an in-out's address is the one
+                        // the last call of the instance bound (NULL before
+                        // the first call, a fault), an external's its
+                        // global's.
+                        let in_out = var.section == Section::InOut;
+                        let slot = self.materialize(loc);
+                        let ptr = self.load_loc(slot, 4)?;
+                        if in_out {
+                            let zero = self.const_u32(0);
+                            let ok = self.emit(cmp_branch(BinOp::Ne, Num::U32, ptr, zero, true));
+                            self.emit(Instr::Fault {
+                                kind: fault_code(FaultKind::NullReference),
+                            });
+                            let here = self.here();
+                            self.patch(ok, here);
+                        }
+                        loc = Loc::Ptr { ptr, off: 0 };
+                    }
                 }
                 Proj::Index(idx) => {
                     let (dims, elem) = match self.m.types.kind(ty).clone() {

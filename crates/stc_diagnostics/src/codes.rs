@@ -614,14 +614,18 @@ MatIEC, Beremiz and CODESYS provide them and programs use them. stc accepts
 them with this warning: BOOL gives 0.0 or 1.0; a REAL or LREAL gives TRUE
 when it is not zero (NaN too). `BOOL_TO_INT` then `INT_TO_REAL` is the
 portable spelling.";
-    W0113 Warning "arithmetic on a bit string"
-"`+`, `-`, `*`, `/` or `MOD` is applied to a bit string (BYTE, WORD, DWORD,
-LWORD), which IEC 61131-3 allows only on numbers. CODESYS, TwinCAT and
-OSCAT code do it, and stc accepts it with this warning: the operation is
-the unsigned one of the bit string's width (`DWORD + DWORD` is a DWORD,
-wrapping modulo 2^32 with no overflow warning); with an integer operand
-the bit string of the wider width is the result. The portable spelling
-converts first: `UDINT_TO_DWORD(DWORD_TO_UDINT(a) + 1)`.";
+    W0113 Warning "bit string used as a number"
+"A bit string (BYTE, WORD, DWORD, LWORD) is used where IEC 61131-3 wants a
+number: an operand of `+`, `-`, `*`, `/` or `MOD`, or an array index.
+CODESYS, TwinCAT and OSCAT code do it, and stc accepts it with this
+warning. Between bit strings and integers the operation is the unsigned
+one of the wider operand's width, as a bit string (`DWORD + DWORD` is a
+DWORD, wrapping modulo 2^32 with no overflow warning; an integer operand is
+converted to that bit string); with a REAL or LREAL operand the bit
+string's unsigned value takes part in the REAL operation; an index is the
+bit string's unsigned value. The portable spelling converts first:
+`UDINT_TO_DWORD(DWORD_TO_UDINT(a) + 1)`, `a[BYTE_TO_USINT(b)]`. `--std
+iec2` refuses all of these.";
     W0114 Warning "global variable used without VAR_EXTERNAL"
 "A POU reads or writes a global variable that it does not declare in a
 VAR_EXTERNAL section. IEC 61131-3 requires the declaration; CODESYS and

@@ -1233,7 +1233,33 @@ impl<'a> Sema<'a> {
                 ok = false;
                 continue;
             }
-            if !self.types.is_integer(it) {
+            let bit_index = self
+                .types
+                .scalar(it)
+                .filter(|t| stc_values::is_bit_string(*t) && *t != ElemType::Bool);
+            if let (Some(b), false) = (bit_index, self.opts.iec2) {
+                // A BYTE or WORD index, as CODESYS allows: its unsigned
+                // value (W0113), converted to ULINT.
+                let span = self.ast.expr(i).span;
+                self.emit(
+                    Diagnostic::new(
+                        Code::W0113,
+                        span,
+                        format!(
+                            "a bit string used as an array index: its value as an unsigned {}",
+                            unsigned_of(b).name()
+                        ),
+                    )
+                    .with_label(format!("this is {}", b.name()))
+                    .with_help(format!(
+                        "the standard wants an integer index: convert with {}_TO_{}(...)",
+                        b.name(),
+                        unsigned_of(b).name()
+                    )),
+                );
+                let to = self.types.elem(unsigned_of(b));
+                self.coercions.insert(i, to);
+            } else if !self.types.is_integer(it) {
                 let span = self.ast.expr(i).span;
                 let msg = format!("an array index must be an integer, not {}", self.tname(it));
                 self.emit(Diagnostic::new(Code::E0205, span, msg).with_label("not an integer"));
@@ -1698,16 +1724,27 @@ impl<'a> Sema<'a> {
     ) -> Option<ElemType> {
         use ElemType as E;
         let bits = |t: ElemType| stc_values::is_bit_string(t) && t != E::Bool;
-        let operand = |t: ElemType| bits(t) || stc_values::is_integer(t);
+        let operand = |t: ElemType| bits(t) || stc_values::is_integer(t) || stc_values::is_real(t);
         if !(bits(a) || bits(b)) || !operand(a) || !operand(b) || self.opts.iec2 {
             return None;
         }
-        let width = stc_values::bits(a).max(stc_values::bits(b));
-        let c = match width {
-            8 => E::Byte,
-            16 => E::Word,
-            32 => E::Dword,
-            _ => E::Lword,
+        let c = if stc_values::is_real(a) || stc_values::is_real(b) {
+            // With a REAL or LREAL: the bit string's unsigned value in it.
+            if op_is_mod(self.ast, e) {
+                return None;
+            }
+            if stc_values::is_real(a) {
+                a
+            } else {
+                b
+            }
+        } else {
+            match stc_values::bits(a).max(stc_values::bits(b)) {
+                8 => E::Byte,
+                16 => E::Word,
+                32 => E::Dword,
+                _ => E::Lword,
+            }
         };
         for (e, t) in [(l, a), (r, b)] {
             if t != c {
@@ -1729,22 +1766,33 @@ impl<'a> Sema<'a> {
             Diagnostic::new(
                 Code::W0113,
                 span,
-                format!(
-                    "arithmetic on a bit string: computed as an unsigned {}",
-                    c.name()
-                ),
+                if stc_values::is_real(c) {
+                    format!(
+                        "arithmetic on a bit string: its unsigned value as a {}",
+                        c.name()
+                    )
+                } else {
+                    format!(
+                        "arithmetic on a bit string: computed as an unsigned {}",
+                        c.name()
+                    )
+                },
             )
             .with_label(format!("{} and {}", a.name(), b.name()))
-            .with_help(format!(
-                "the standard allows arithmetic only on numbers: convert with {}_TO_{}(...)",
-                c.name(),
-                match c {
-                    E::Byte => "USINT",
-                    E::Word => "UINT",
-                    E::Dword => "UDINT",
-                    _ => "ULINT",
-                }
-            )),
+            .with_help(if stc_values::is_real(c) {
+                let b = if bits(a) { a } else { b };
+                format!(
+                    "the standard allows arithmetic only on numbers: convert with {}_TO_{}(...)",
+                    b.name(),
+                    c.name()
+                )
+            } else {
+                format!(
+                    "the standard allows arithmetic only on numbers: convert with {}_TO_{}(...)",
+                    c.name(),
+                    unsigned_of(c).name()
+                )
+            }),
         );
         Some(c)
     }
@@ -2066,4 +2114,25 @@ pub(crate) fn show_value(v: &Value) -> String {
         Value::Str(s) => format!("'{}'", stc_values::string_text(s)),
         Value::WStr(s) => format!("\"{}\"", String::from_utf16_lossy(s)),
     }
+}
+
+/// The unsigned integer type of a bit string's width (BYTE: USINT...).
+fn unsigned_of(b: ElemType) -> ElemType {
+    match stc_values::bits(b) {
+        8 => ElemType::Usint,
+        16 => ElemType::Uint,
+        32 => ElemType::Udint,
+        _ => ElemType::Ulint,
+    }
+}
+
+/// Whether expression `e` is a `MOD`.
+fn op_is_mod(ast: &stc_syntax::ast::Ast, e: ExprId) -> bool {
+    matches!(
+        ast.expr(e).kind,
+        ExprKind::Binary {
+            op: BinaryOp::Mod,
+            ..
+        }
+    )
 }

@@ -216,6 +216,25 @@ fn error(status: StatusCode, message: impl std::fmt::Display) -> Response {
     )
 }
 
+/// A refused request: its status and message (small, unlike a
+/// `Response`, to pass around in a `Result`).
+struct Refusal(StatusCode, String);
+
+fn refuse(status: StatusCode, message: impl std::fmt::Display) -> Refusal {
+    Refusal(status, message.to_string())
+}
+
+impl IntoResponse for Refusal {
+    fn into_response(self) -> Response {
+        let mut r = error(self.0, self.1);
+        if self.0 == StatusCode::UNAUTHORIZED {
+            r.headers_mut()
+                .insert(header::WWW_AUTHENTICATE, HeaderValue::from_static("Bearer"));
+        }
+        r
+    }
+}
+
 /// The status of a runtime error about a path or a value.
 fn status_of(e: &stc_runtime::Error) -> StatusCode {
     match e {
@@ -225,15 +244,12 @@ fn status_of(e: &stc_runtime::Error) -> StatusCode {
 }
 
 /// Checks the token of a request that changes something.
-fn authorize(s: &Server, headers: &HeaderMap) -> Result<(), Response> {
+fn authorize(s: &Server, headers: &HeaderMap) -> Result<(), Refusal> {
     let Some(value) = headers.get(header::AUTHORIZATION) else {
-        let mut r = error(
+        return Err(refuse(
             StatusCode::UNAUTHORIZED,
             "forcing needs the monitor's token: send `Authorization: Bearer TOKEN` (the token is printed at start, or given with --monitor-token)",
-        );
-        r.headers_mut()
-            .insert(header::WWW_AUTHENTICATE, HeaderValue::from_static("Bearer"));
-        return Err(r);
+        ));
     };
     let given = value
         .to_str()
@@ -248,7 +264,7 @@ fn authorize(s: &Server, headers: &HeaderMap) -> Result<(), Response> {
         diff |= usize::from(a.get(i).copied().unwrap_or(0) ^ y);
     }
     if diff != 0 {
-        return Err(error(StatusCode::FORBIDDEN, "wrong token"));
+        return Err(refuse(StatusCode::FORBIDDEN, "wrong token"));
     }
     Ok(())
 }
@@ -256,39 +272,39 @@ fn authorize(s: &Server, headers: &HeaderMap) -> Result<(), Response> {
 /// The body of a request as a JSON object.
 fn body_object(
     body: Result<Bytes, BytesRejection>,
-) -> Result<serde_json::Map<String, serde_json::Value>, Response> {
+) -> Result<serde_json::Map<String, serde_json::Value>, Refusal> {
     let bytes = body.map_err(|e| {
         let status = e.status();
         if status == StatusCode::PAYLOAD_TOO_LARGE {
-            error(
+            refuse(
                 status,
                 format!("the request body is larger than {MAX_BODY} bytes"),
             )
         } else {
-            error(status, e.body_text())
+            refuse(status, e.body_text())
         }
     })?;
     match serde_json::from_slice::<serde_json::Value>(&bytes) {
         Ok(serde_json::Value::Object(m)) => Ok(m),
-        Ok(_) => Err(error(
+        Ok(_) => Err(refuse(
             StatusCode::BAD_REQUEST,
             "the body must be a JSON object such as {\"path\": \"Main.x\", \"value\": \"42\"}",
         )),
-        Err(e) => Err(error(
+        Err(e) => Err(refuse(
             StatusCode::BAD_REQUEST,
             format!("the body is not JSON: {e}"),
         )),
     }
 }
 
-fn field_path(m: &serde_json::Map<String, serde_json::Value>) -> Result<String, Response> {
+fn field_path(m: &serde_json::Map<String, serde_json::Value>) -> Result<String, Refusal> {
     match m.get("path") {
         Some(serde_json::Value::String(p)) => Ok(p.clone()),
-        Some(_) => Err(error(
+        Some(_) => Err(refuse(
             StatusCode::BAD_REQUEST,
             "`path` must be a string (a variable path such as Main.x)",
         )),
-        None => Err(error(StatusCode::BAD_REQUEST, "`path` is missing")),
+        None => Err(refuse(StatusCode::BAD_REQUEST, "`path` is missing")),
     }
 }
 
@@ -337,7 +353,7 @@ async fn list(State(s): S) -> Response {
 
 /// The places a `paths` parameter names (every listed variable without
 /// it).
-fn places(s: &Server, paths: Option<&String>) -> Result<Vec<Place>, Response> {
+fn places(s: &Server, paths: Option<&String>) -> Result<Vec<Place>, Refusal> {
     let scope = s.scope();
     let mut out: Vec<Place> = Vec::new();
     let list: Vec<String> = match paths {
@@ -350,13 +366,13 @@ fn places(s: &Server, paths: Option<&String>) -> Result<Vec<Place>, Response> {
             .collect(),
     };
     if list.len() > MAX_VARIABLES {
-        return Err(error(
+        return Err(refuse(
             StatusCode::BAD_REQUEST,
             format!("at most {MAX_VARIABLES} paths at once"),
         ));
     }
     for p in list {
-        let place = scope.resolve(&p).map_err(|e| error(status_of(&e), e))?;
+        let place = scope.resolve(&p).map_err(|e| refuse(status_of(&e), e))?;
         if !out.iter().any(|q| q.name == place.name) {
             out.push(place);
         }
@@ -366,19 +382,19 @@ fn places(s: &Server, paths: Option<&String>) -> Result<Vec<Place>, Response> {
 
 type Params = Result<Query<std::collections::HashMap<String, String>>, QueryRejection>;
 
-fn params(q: Params) -> Result<std::collections::HashMap<String, String>, Response> {
+fn params(q: Params) -> Result<std::collections::HashMap<String, String>, Refusal> {
     q.map(|Query(m)| m)
-        .map_err(|e| error(StatusCode::BAD_REQUEST, e.body_text()))
+        .map_err(|e| refuse(StatusCode::BAD_REQUEST, e.body_text()))
 }
 
 async fn values(State(s): S, q: Params) -> Response {
     let q = match params(q) {
         Ok(q) => q,
-        Err(r) => return r,
+        Err(r) => return r.into_response(),
     };
     let places = match places(&s, q.get("paths")) {
         Ok(p) => p,
-        Err(r) => return r,
+        Err(r) => return r.into_response(),
     };
     let (tx, rx) = oneshot::channel();
     {
@@ -425,15 +441,15 @@ async fn forces(State(s): S) -> Response {
 
 async fn force(State(s): S, headers: HeaderMap, body: Result<Bytes, BytesRejection>) -> Response {
     if let Err(r) = authorize(&s, &headers) {
-        return r;
+        return r.into_response();
     }
     let m = match body_object(body) {
         Ok(m) => m,
-        Err(r) => return r,
+        Err(r) => return r.into_response(),
     };
     let path = match field_path(&m) {
         Ok(p) => p,
-        Err(r) => return r,
+        Err(r) => return r.into_response(),
     };
     // An ST literal as text; JSON booleans and numbers are taken as the
     // literal they print as.
@@ -466,11 +482,11 @@ async fn force(State(s): S, headers: HeaderMap, body: Result<Bytes, BytesRejecti
 
 async fn unforce(State(s): S, headers: HeaderMap, body: Result<Bytes, BytesRejection>) -> Response {
     if let Err(r) = authorize(&s, &headers) {
-        return r;
+        return r.into_response();
     }
     let m = match body_object(body) {
         Ok(m) => m,
-        Err(r) => return r,
+        Err(r) => return r.into_response(),
     };
     if m.get("all") == Some(&serde_json::Value::Bool(true)) {
         let n = std::mem::take(&mut s.shared().forces.0).len();
@@ -478,7 +494,7 @@ async fn unforce(State(s): S, headers: HeaderMap, body: Result<Bytes, BytesRejec
     }
     let path = match field_path(&m) {
         Ok(p) => p,
-        Err(r) => return r,
+        Err(r) => return r.into_response(),
     };
     let scope = s.scope();
     let released = s.shared().forces.release(&scope, &path);
@@ -496,14 +512,14 @@ async fn unforce(State(s): S, headers: HeaderMap, body: Result<Bytes, BytesRejec
 }
 
 /// Reads a duration parameter: `100ms`, `T#1s`, or `0` (every cycle).
-fn every(q: Option<&String>) -> Result<Duration, Response> {
+fn every(q: Option<&String>) -> Result<Duration, Refusal> {
     match q.map(|t| t.trim()) {
         None => Ok(DEFAULT_EVERY),
         Some("0") => Ok(Duration::ZERO),
         Some(t) => stc_runtime::parse_tick(t)
             .map(|ns| Duration::from_nanos(ns as u64))
             .map_err(|_| {
-                error(
+                refuse(
                     StatusCode::BAD_REQUEST,
                     format!(
                         "interval `{t}`: expected a duration such as 100ms, or 0 for every cycle"
@@ -520,7 +536,7 @@ async fn ws(
 ) -> Response {
     let q = match params(q) {
         Ok(q) => q,
-        Err(r) => return r,
+        Err(r) => return r.into_response(),
     };
     let upgrade = match upgrade {
         Ok(u) => u,
@@ -533,11 +549,11 @@ async fn ws(
     };
     let places = match places(&s, q.get("paths")) {
         Ok(p) => p,
-        Err(r) => return r,
+        Err(r) => return r.into_response(),
     };
     let every = match every(q.get("interval")) {
         Ok(e) => e,
-        Err(r) => return r,
+        Err(r) => return r.into_response(),
     };
     let (tx, rx) = mpsc::channel(2);
     let id = {

@@ -489,20 +489,19 @@ VAR i : DINT; x : DINT; END_VAR
     n := n + 1;
     FOR i := 1 TO 200000 DO x := x + i MOD 7; END_FOR;
 END_PROGRAM
+
+CONFIGURATION Plant
+    RESOURCE Cpu ON PLC
+        TASK busy (INTERVAL := T#1ms, PRIORITY := 1);
+        PROGRAM Main WITH busy : Main;
+    END_RESOURCE
+END_CONFIGURATION
 ",
     )
     .unwrap();
     let c = Controller::start(
         &dir,
-        &[
-            "run",
-            "slow.st",
-            "--realtime",
-            "--tick",
-            "100us",
-            "--monitor",
-            "127.0.0.1:0",
-        ],
+        &["run", "slow.st", "--realtime", "--monitor", "127.0.0.1:0"],
     );
     let t0 = Instant::now();
     eventually("overruns are counted", 20, || {
@@ -528,6 +527,15 @@ END_PROGRAM
         c.stderr()
     );
     assert!(int(&s["overruns"]) >= 20, "{s}");
+    // The task's own figures: each run longer than its 1 ms interval.
+    let task = &s["tasks"][0];
+    assert_eq!(task["name"], "busy");
+    assert!(int(&task["overruns"]) >= 20, "{s}");
+    assert!(int(&task["exec"]["min_ns"]) > 1_000_000, "{s}");
+    assert!(
+        int(&task["response"]["max_ns"]) >= int(&task["exec"]["max_ns"]),
+        "{s}"
+    );
     drop(c);
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -424,6 +424,22 @@ fn the_websocket_streams_values_and_takes_new_watch_lists() {
     // Bad parameters are refused before the upgrade.
     let bad = format!("ws://{}/api/ws?paths=Main.nope", c.addr());
     assert!(tungstenite::connect(bad).is_err());
+    // A message over 64 KiB closes its own connection, nothing else.
+    let url = format!("ws://{}/api/ws?paths=Main.count", c.addr());
+    let (mut big, _) = tungstenite::connect(url).unwrap();
+    if let tungstenite::stream::MaybeTlsStream::Plain(s) = big.get_ref() {
+        s.set_read_timeout(Some(Duration::from_secs(10))).unwrap();
+    }
+    let _ = big.send(Message::Text("x".repeat(100_000).into()));
+    let end = Instant::now() + Duration::from_secs(10);
+    loop {
+        match big.read() {
+            Ok(Message::Close(_)) | Err(_) => break,
+            Ok(_) => assert!(Instant::now() < end, "still open"),
+        }
+    }
+    let before = int(&next(&mut ws)["cycle"]);
+    assert!(int(&next(&mut ws)["cycle"]) > before);
     let _ = ws.close(None);
     drop(c);
     let _ = std::fs::remove_dir_all(&dir);

@@ -503,7 +503,7 @@ fn overruns_are_counted_and_their_warnings_rate_limited() {
 VAR_OUTPUT n : DINT; END_VAR
 VAR i : DINT; x : DINT; END_VAR
     n := n + 1;
-    FOR i := 1 TO 200000 DO x := x + i MOD 7; END_FOR;
+    FOR i := 1 TO 500000 DO x := x + i MOD 7; END_FOR;
 END_PROGRAM
 
 CONFIGURATION Plant

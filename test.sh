@@ -12,11 +12,19 @@ command -v xmllint >/dev/null 2>&1 || missing="$missing libxml2-utils"
 command -v cppcheck >/dev/null 2>&1 || missing="$missing cppcheck"
 command -v make >/dev/null 2>&1 || missing="$missing make"
 command -v gcc >/dev/null 2>&1 || missing="$missing gcc"
+sudo=""
+[ "$(id -u)" = 0 ] || sudo="sudo"
 if [ -n "$missing" ]; then
     echo "== installing$missing"
-    sudo=""
-    [ "$(id -u)" = 0 ] || sudo="sudo"
     $sudo apt-get update -qq && $sudo apt-get install -y -qq $missing
+fi
+# The monitor's web page is tested in headless Chromium
+# (crates/stc/tests/browser.rs); where it cannot be installed, that test
+# says SKIPPED.
+if ! command -v chromium >/dev/null 2>&1 && command -v apt-get >/dev/null 2>&1; then
+    echo "== installing chromium"
+    { $sudo apt-get update -qq && $sudo apt-get install -y -qq chromium; } ||
+        echo "== chromium could not be installed: the browser test will be SKIPPED"
 fi
 # rustfmt and clippy, when the toolchain is managed by rustup.
 if command -v rustup >/dev/null 2>&1; then

@@ -124,7 +124,11 @@ pub fn write_atomically(path: &Path, tmp: &Path, bytes: &[u8]) -> std::io::Resul
     Ok(())
 }
 
-/// Several things to do between cycles, in order.
+/// Several things to do between cycles: before a cycle in order, after
+/// one in the reverse order, so what is pushed last is nearest to the
+/// program on both sides (the inputs are read, then the forces written;
+/// after the cycle the forces are written again before the outputs and the
+/// retained variables are taken).
 pub struct All(pub Vec<Box<dyn Between>>);
 
 impl Between for All {
@@ -134,13 +138,18 @@ impl Between for All {
         }
     }
     fn after_cycle(&mut self, sim: &mut Simulation, k: u64) {
-        for b in &mut self.0 {
+        for b in self.0.iter_mut().rev() {
             b.after_cycle(sim, k);
         }
     }
     fn at_end(&mut self, sim: &mut Simulation) {
-        for b in &mut self.0 {
+        for b in self.0.iter_mut().rev() {
             b.at_end(sim);
+        }
+    }
+    fn faulted(&mut self, sim: &mut Simulation, k: u64, fault: &stc_vm::VmFault) {
+        for b in self.0.iter_mut().rev() {
+            b.faulted(sim, k, fault);
         }
     }
 }

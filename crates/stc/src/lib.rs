@@ -11,6 +11,8 @@ pub mod fmt_cmd;
 pub mod lsp_cmd;
 pub mod manifest;
 pub mod modbus;
+pub mod modbus_client;
+pub mod monitor;
 pub mod output;
 pub mod run;
 pub mod sources;

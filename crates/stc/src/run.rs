@@ -16,6 +16,7 @@ use stc_engine_c::{CEngine, Toolchain};
 use stc_runtime::iomap::{default_layout, Exchange, IoMap, ProcessImage, SimInputs};
 use stc_runtime::path::split_list;
 use stc_runtime::realtime::{RealTime, WallClock};
+use stc_runtime::timing::{Stats, Timing};
 use stc_runtime::{Between, Engine};
 use stc_runtime::{Format, Renderer, Report, Simulation, Stimulus, Unpaced, DEFAULT_MAX_STEPS};
 use stc_vm::Machine;
@@ -78,6 +79,14 @@ pub struct RunArgs {
     /// layout plus the allocation map).
     #[arg(long, value_name = "HOST:PORT", requires = "realtime")]
     pub modbus: Option<String>,
+    /// Real time: serve the monitor (HTTP API, WebSocket stream and web
+    /// page to watch and force variables and read task statistics) on
+    /// HOST:PORT (a port alone binds loopback; port 0 chooses one).
+    #[arg(long, value_name = "HOST:PORT", requires = "realtime")]
+    pub monitor: Option<String>,
+    /// The token forcing needs [default: a random one, printed at start].
+    #[arg(long = "monitor-token", value_name = "TOKEN", requires = "monitor")]
+    pub monitor_token: Option<String>,
     /// Real time: keep the RETAIN variables in FILE, restored at start
     /// (warm start) and saved crash-safely at cycle ends.
     #[arg(long, value_name = "FILE", requires = "realtime")]
@@ -387,7 +396,20 @@ fn configure_and_run(image: Box<dyn Engine>, args: &RunArgs) -> Outcome {
         ReportFormat::Csv => Format::Csv,
     };
     if args.realtime {
+        if let Some(t) = &args.monitor_token {
+            if t.is_empty() || !t.bytes().all(|b| b.is_ascii_graphic()) {
+                return usage_error(
+                    "--monitor-token: a token is one or more printable characters without spaces",
+                );
+            }
+        }
         let mut between = All(Vec::new());
+        let stats = Arc::new(Mutex::new(Stats::new(sim.plan())));
+        between.0.push(Box::new(Timing::new(
+            &mut sim,
+            WallClock::new(),
+            Arc::clone(&stats),
+        )));
         let map = match &args.io_map {
             None => None,
             Some(path) => {
@@ -417,9 +439,9 @@ fn configure_and_run(image: Box<dyn Engine>, args: &RunArgs) -> Outcome {
                 warn,
             )));
         }
-        let (modbus_entries, sim_inputs) = match map {
-            Some(m) => (m.modbus, m.sim),
-            None => (default_layout(sim.model()), Vec::new()),
+        let (modbus_entries, sim_inputs, clients) = match map {
+            Some(m) => (m.modbus, m.sim, m.clients),
+            None => (default_layout(sim.model()), Vec::new(), Vec::new()),
         };
         if !sim_inputs.is_empty() {
             between.0.push(Box::new(SimInputs(sim_inputs)));
@@ -437,6 +459,36 @@ fn configure_and_run(image: Box<dyn Engine>, args: &RunArgs) -> Outcome {
                 Err(e) => return usage_error(e),
             }
             between.0.push(Box::new(Exchange(image)));
+        }
+        if !clients.is_empty() {
+            let err = Mutex::new(console::stderr());
+            let warn = Arc::new(move |w: String| {
+                if let Some(f) = &mut *err.lock().unwrap_or_else(|e| e.into_inner()) {
+                    let _ = writeln!(f, "{w}");
+                }
+            });
+            match crate::modbus_client::start(clients, warn) {
+                Ok(c) => between.0.push(Box::new(c)),
+                Err(e) => return usage_error(e),
+            }
+        }
+        if let Some(addr) = &args.monitor {
+            let (token, given) = match &args.monitor_token {
+                Some(t) => (t.clone(), true),
+                None => (crate::monitor::new_token(), false),
+            };
+            match crate::monitor::start(&sim, addr, token.clone(), Arc::clone(&stats)) {
+                Ok((monitor, bound)) => {
+                    if let Some(f) = &mut notes {
+                        let _ = writeln!(f, "note: monitor: listening on http://{bound}/");
+                        if !given {
+                            let _ = writeln!(f, "note: monitor: token {token}");
+                        }
+                    }
+                    between.0.push(Box::new(monitor));
+                }
+                Err(e) => return usage_error(e),
+            }
         }
         let mut o = realtime(&mut sim, cycles, args.trace, format, &mut between);
         o.stderr.insert_str(0, &warnings);

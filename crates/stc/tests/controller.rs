@@ -502,11 +502,14 @@ fn fifty_concurrent_clients_are_served_while_the_cycles_go_on() {
         seen.push(c.join().expect("a client failed"));
     }
     assert!(Instant::now() < deadline, "50 clients took more than 60 s");
-    // The program kept cycling while they were served.
+    // The program kept cycling while they were served (all 50 may be
+    // served within one cycle: the counter then moves just after).
     let mut c = sync::tcp::connect_with_timeout(addr, Some(Duration::from_secs(5))).unwrap();
-    let r = c.read_input_registers(10, 2).unwrap().unwrap();
-    let now = (u32::from(r[0]) << 16) | u32::from(r[1]);
-    assert!(now > *seen.iter().min().unwrap());
+    let min = *seen.iter().min().unwrap();
+    eventually("the counter moves on", || {
+        let r = c.read_input_registers(10, 2).unwrap().unwrap();
+        ((u32::from(r[0]) << 16) | u32::from(r[1])) > min
+    });
     child.kill().unwrap();
     child.wait().unwrap();
     let _ = std::fs::remove_dir_all(&dir);

@@ -177,6 +177,7 @@ impl RoundForInt for f64 {
 pub struct IoMap {
     pub modbus: Vec<Entry>,
     pub sim: Vec<SimChannel>,
+    pub clients: Vec<ClientChannel>,
 }
 
 #[derive(Deserialize)]
@@ -186,6 +187,182 @@ struct MapFile {
     modbus: Vec<Spanned<ModbusEntry>>,
     #[serde(default)]
     sim: Vec<Spanned<SimEntry>>,
+    #[serde(default)]
+    client: Vec<Spanned<ClientEntry>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ClientEntry {
+    device: Spanned<String>,
+    #[serde(default = "unit_one")]
+    unit: Spanned<i64>,
+    table: Spanned<String>,
+    address: Spanned<i64>,
+    count: Option<Spanned<i64>>,
+    variables: Spanned<Vec<Spanned<String>>>,
+    #[serde(default)]
+    write: bool,
+    poll: Option<Spanned<String>>,
+}
+
+fn unit_one() -> Spanned<i64> {
+    Spanned::new(0..0, 1)
+}
+
+/// The poll period of a client channel without `poll`.
+pub const DEFAULT_POLL_NS: i64 = 100_000_000;
+
+/// A block of a remote Modbus TCP server's table, polled by the
+/// controller and bound to variables (`[[client]]` in the map).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ClientChannel {
+    /// `host:port` of the remote server.
+    pub device: String,
+    pub unit: u8,
+    pub table: Table,
+    pub address: u16,
+    /// Bits or registers, all the variables' together.
+    pub count: u16,
+    /// Written to the device (coils and holding registers only) rather
+    /// than read from it.
+    pub write: bool,
+    pub poll_ns: i64,
+    /// The variables in order: each with its first bit or register in the
+    /// block and how many it takes.
+    pub vars: Vec<(Place, ElemType, u16, u16)>,
+    /// The map's line.
+    pub line: usize,
+}
+
+/// What one request moves: bits or registers.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum ClientData {
+    Bits(Vec<bool>),
+    Regs(Vec<u16>),
+}
+
+impl ClientChannel {
+    /// A short name for messages: `modbus client DEVICE (holding 0..3)`.
+    pub fn describe(&self) -> String {
+        format!(
+            "modbus client {} unit {} ({} {}..{})",
+            self.device,
+            self.unit,
+            self.table.noun(),
+            self.address,
+            u32::from(self.address) + u32::from(self.count) - 1
+        )
+    }
+
+    /// Writes what a poll read into the variables.
+    pub fn load(&self, model: &Model, mem: &mut dyn Memory, data: &ClientData) {
+        for (place, elem, at, n) in &self.vars {
+            let (at, n) = (*at as usize, *n as usize);
+            let Some(addr) = place.loc.address(mem) else {
+                continue;
+            };
+            match data {
+                ClientData::Bits(bits) => {
+                    if let Some(&b) = bits.get(at) {
+                        if let View::Type(ty) = place.view {
+                            write_value(mem, model, addr, ty, &Value::Bool(b));
+                        }
+                    }
+                }
+                ClientData::Regs(regs) => {
+                    let (Some(regs), Some(bytes)) =
+                        (regs.get(at..at + n), mem.bytes_mut(addr, elem_size(*elem)))
+                    else {
+                        continue;
+                    };
+                    regs_to_bytes(regs, bytes);
+                }
+            }
+        }
+    }
+
+    /// The variables' values, to write to the device.
+    pub fn store(&self, mem: &dyn Memory) -> ClientData {
+        if self.table.is_bits() {
+            let mut bits = vec![false; self.count as usize];
+            for (place, elem, at, _) in &self.vars {
+                if let Some(b) = place
+                    .loc
+                    .address(mem)
+                    .and_then(|a| mem.bytes(a, elem_size(*elem)))
+                {
+                    bits[*at as usize] = b[0] & 1 != 0;
+                }
+            }
+            ClientData::Bits(bits)
+        } else {
+            let mut regs = vec![0u16; self.count as usize];
+            for (place, elem, at, n) in &self.vars {
+                if let Some(b) = place
+                    .loc
+                    .address(mem)
+                    .and_then(|a| mem.bytes(a, elem_size(*elem)))
+                {
+                    let (at, n) = (*at as usize, *n as usize);
+                    bytes_to_regs(b, &mut regs[at..at + n]);
+                }
+            }
+            ClientData::Regs(regs)
+        }
+    }
+}
+
+/// What a client channel and its poller share: the last poll's data not
+/// yet given to the program, and the program's last values to write.
+#[derive(Debug, Default)]
+pub struct ClientBuffer {
+    pub input: Option<ClientData>,
+    pub output: Option<ClientData>,
+}
+
+/// The client channels of a map between cycles: before a cycle, the data
+/// every read channel's last complete poll brought (each channel's block
+/// as one request read it); after one, the values of the written
+/// channels' variables for their pollers. Only the buffers' locks are
+/// taken, for a copy: the cycle never waits for the network.
+pub struct Clients(
+    pub  Vec<(
+        ClientChannel,
+        std::sync::Arc<std::sync::Mutex<ClientBuffer>>,
+    )>,
+);
+
+impl Between for Clients {
+    fn before_cycle(&mut self, sim: &mut Simulation, _k: u64) {
+        let model = std::sync::Arc::clone(sim.model());
+        // Take every fresh block first, then write them all.
+        let fresh: Vec<Option<ClientData>> = self
+            .0
+            .iter()
+            .map(|(ch, buf)| {
+                if ch.write {
+                    None
+                } else {
+                    buf.lock().unwrap_or_else(|e| e.into_inner()).input.take()
+                }
+            })
+            .collect();
+        for ((ch, _), data) in self.0.iter().zip(fresh) {
+            if let Some(d) = data {
+                ch.load(&model, sim.engine_mut(), &d);
+            }
+        }
+    }
+
+    fn after_cycle(&mut self, sim: &mut Simulation, _k: u64) {
+        for (ch, buf) in &self.0 {
+            if ch.write {
+                let data = ch.store(sim.engine());
+                buf.lock().unwrap_or_else(|e| e.into_inner()).output = Some(data);
+            }
+        }
+    }
 }
 
 #[derive(Deserialize)]
@@ -392,6 +569,141 @@ impl IoMap {
                 low: s.low,
                 high: s.high,
                 period_ns,
+            });
+        }
+        for c in &raw.client {
+            let c = c.get_ref();
+            let table = Table::parse(c.table.get_ref()).ok_or_else(|| {
+                err(
+                    c.table.span().start,
+                    format!(
+                        "unknown table `{}`: expected coil, discrete, input or holding",
+                        c.table.get_ref()
+                    ),
+                )
+            })?;
+            if c.write && !table.is_written() {
+                return Err(err(
+                    c.table.span().start,
+                    format!(
+                        "`write = true` needs a coil or holding register: a device's {}s are read only",
+                        table.noun()
+                    ),
+                ));
+            }
+            let device = c.device.get_ref().trim().to_string();
+            let port_ok = device
+                .rsplit_once(':')
+                .is_some_and(|(h, p)| !h.is_empty() && p.parse::<u16>().is_ok());
+            if !port_ok {
+                return Err(err(
+                    c.device.span().start,
+                    format!("device `{device}`: expected HOST:PORT, such as 192.168.0.10:502"),
+                ));
+            }
+            let unit = *c.unit.get_ref();
+            let unit = u8::try_from(unit).map_err(|_| {
+                err(
+                    c.unit.span().start,
+                    format!("unit {unit}: a unit id is 0 to 255"),
+                )
+            })?;
+            if c.variables.get_ref().is_empty() {
+                return Err(err(
+                    c.variables.span().start,
+                    "`variables` is empty: bind at least one variable".into(),
+                ));
+            }
+            let mut vars = Vec::new();
+            let mut at: u16 = 0;
+            for v in c.variables.get_ref() {
+                let (place, elem) = resolve(v, !c.write)?;
+                let n = if table.is_bits() {
+                    if elem != ElemType::Bool {
+                        return Err(err(
+                            v.span().start,
+                            format!(
+                                "`{}` is {}: a {} holds a BOOL",
+                                place.name,
+                                elem.name(),
+                                table.noun()
+                            ),
+                        ));
+                    }
+                    1
+                } else {
+                    registers(elem).ok_or_else(|| {
+                        err(
+                            v.span().start,
+                            format!(
+                                "`{}` is {}: a {} holds a number or a bit string",
+                                place.name,
+                                elem.name(),
+                                table.noun()
+                            ),
+                        )
+                    })?
+                };
+                vars.push((place, elem, at, n));
+                at = at.saturating_add(n);
+            }
+            let count = at;
+            if let Some(n) = &c.count {
+                if *n.get_ref() != i64::from(count) {
+                    return Err(err(
+                        n.span().start,
+                        format!(
+                            "count {}: the variables take {count} {}",
+                            n.get_ref(),
+                            if table.is_bits() { "bits" } else { "registers" }
+                        ),
+                    ));
+                }
+            }
+            let max = match (table.is_bits(), c.write) {
+                (true, false) => MAX_BITS,
+                (true, true) => 1968,
+                (false, false) => MAX_REGS,
+                (false, true) => 123,
+            };
+            if count > max {
+                return Err(err(
+                    c.variables.span().start,
+                    format!(
+                        "the variables take {count} {}: one request moves at most {max}",
+                        if table.is_bits() { "bits" } else { "registers" }
+                    ),
+                ));
+            }
+            let address = *c.address.get_ref();
+            if address < 0 || address + i64::from(count) > 65536 {
+                return Err(err(
+                    c.address.span().start,
+                    format!(
+                        "address {address}: a {} address is 0 to 65535 (the block takes {count})",
+                        table.noun()
+                    ),
+                ));
+            }
+            let poll_ns = match &c.poll {
+                Some(p) => crate::parse_tick(p.get_ref()).map_err(|_| {
+                    err(
+                        p.span().start,
+                        format!("poll `{}`: expected a duration such as 100ms", p.get_ref()),
+                    )
+                })?,
+                None => DEFAULT_POLL_NS,
+            };
+            map.clients.push(ClientChannel {
+                device,
+                unit,
+                table,
+                address: address as u16,
+                count,
+                write: c.write,
+                poll_ns,
+                vars,
+                line: line_of(text, c.device.span().start),
             });
         }
         // The default layout first, so a clash names the map's line.
@@ -798,6 +1110,65 @@ mod tests {
         assert!(e.starts_with("map.toml:1: "), "{e}");
         let e = error("[[sim]]\nvariable = \"main.x\"\nwave = \"ramp\"\n");
         assert!(e.contains("needs a `period`"), "{e}");
+    }
+
+    #[test]
+    fn client_channels_bind_variables_to_a_remote_block() {
+        let map = parse(
+            "[[client]]\ndevice = \"127.0.0.1:5020\"\ntable = \"holding\"\naddress = 3\n\
+             variables = [\"main.count\", \"main.lx\"]\npoll = \"20ms\"\n\
+             [[client]]\ndevice = \"plc:502\"\nunit = 7\ntable = \"coil\"\naddress = 0\n\
+             variables = [\"main.flag\"]\nwrite = true\n",
+        )
+        .unwrap();
+        let [a, b] = &map.clients[..] else {
+            panic!("{:?}", map.clients)
+        };
+        assert_eq!(
+            (a.unit, a.table, a.address, a.count, a.poll_ns, a.write),
+            (1, Table::Holding, 3, 5, 20_000_000, false)
+        );
+        assert_eq!(
+            (a.vars[0].2, a.vars[0].3, a.vars[1].2, a.vars[1].3),
+            (0, 1, 1, 4)
+        );
+        assert_eq!(
+            (b.unit, b.count, b.write, b.poll_ns),
+            (7, 1, true, DEFAULT_POLL_NS)
+        );
+        // A round trip through the registers, high word first.
+        let mut mem = crate::testing::sample().init;
+        let m = sample_model();
+        a.load(
+            &m,
+            &mut mem,
+            &ClientData::Regs(vec![0xfffe, 0, 0, 0x1234, 0x5678]),
+        );
+        assert_eq!(
+            a.store(&mem),
+            ClientData::Regs(vec![0xfffe, 0, 0, 0x1234, 0x5678])
+        );
+        let e = |t: &str| error(&format!("[[client]]\ndevice = \"h:1\"\n{t}"));
+        assert!(
+            e("table = \"input\"\naddress = 0\nvariables = [\"main.count\"]\nwrite = true\n")
+                .contains("read only")
+        );
+        assert!(
+            e("table = \"coil\"\naddress = 0\nvariables = [\"main.count\"]\n")
+                .contains("holds a BOOL")
+        );
+        assert!(
+            e("table = \"input\"\naddress = 0\ncount = 2\nvariables = [\"main.count\"]\n")
+                .starts_with("map.toml:5: count 2")
+        );
+        assert!(
+            e("table = \"input\"\naddress = 65535\nvariables = [\"main.lx\"]\n")
+                .contains("address 65535")
+        );
+        assert!(e("table = \"input\"\naddress = 0\nvariables = []\n").contains("empty"));
+        assert!(e("table = \"input\"\naddress = 0\nvariables = [\"K\"]\n").contains("constant"));
+        assert!(error("[[client]]\ndevice = \"nohost\"\ntable = \"input\"\naddress = 0\nvariables = [\"g\"]\n")
+            .starts_with("map.toml:2: device `nohost`"));
     }
 
     #[test]

@@ -18,6 +18,7 @@
 pub mod engine;
 pub mod error;
 pub mod iomap;
+pub mod monitor;
 pub mod path;
 pub mod realtime;
 pub mod report;
@@ -25,6 +26,7 @@ pub mod retain;
 pub mod schedule;
 pub mod sim;
 pub mod stimulus;
+pub mod timing;
 pub mod value;
 
 #[cfg(test)]

@@ -24,6 +24,7 @@ pub trait Clock {
 }
 
 /// The host's monotonic clock.
+#[derive(Clone, Copy, Debug)]
 pub struct WallClock {
     start: Instant,
 }
@@ -62,7 +63,14 @@ pub struct RealTime<'a, C: Clock> {
     warn: &'a mut dyn FnMut(String),
     /// When the next cycle is due (set by the first cycle).
     due: Option<Duration>,
+    /// When an overrun was last reported, and the overruns since then
+    /// that were not (at most one warning a second).
+    warned: Option<Duration>,
+    unreported: u64,
 }
+
+/// The shortest time between two overrun warnings.
+const WARN_EVERY: Duration = Duration::from_secs(1);
 
 impl<'a, C: Clock> RealTime<'a, C> {
     pub fn new(
@@ -77,6 +85,8 @@ impl<'a, C: Clock> RealTime<'a, C> {
             stop,
             warn,
             due: None,
+            warned: None,
+            unreported: 0,
         }
     }
 }
@@ -118,11 +128,24 @@ impl<C: Clock> Pacer for RealTime<'_, C> {
         let next = started + self.tick;
         let now = self.clock.now();
         if now > next {
-            (self.warn)(format!(
-                "warning: overrun: cycle {cycle} took {} with a tick of {}",
-                shown(now - started),
-                shown(self.tick)
-            ));
+            if self
+                .warned
+                .is_none_or(|w| now.saturating_sub(w) >= WARN_EVERY)
+            {
+                let more = match std::mem::take(&mut self.unreported) {
+                    0 => String::new(),
+                    1 => " (and 1 more overrun since the last warning)".into(),
+                    n => format!(" (and {n} more overruns since the last warning)"),
+                };
+                (self.warn)(format!(
+                    "warning: overrun: cycle {cycle} took {} with a tick of {}{more}",
+                    shown(now - started),
+                    shown(self.tick)
+                ));
+                self.warned = Some(now);
+            } else {
+                self.unreported += 1;
+            }
             self.due = Some(now);
         } else {
             self.due = Some(next);
@@ -195,6 +218,26 @@ mod tests {
             warnings,
             ["warning: overrun: cycle 1 took T#13ms250us with a tick of T#10ms"]
         );
+    }
+
+    #[test]
+    fn overrun_warnings_are_at_most_one_a_second() {
+        let stop = AtomicBool::new(false);
+        let mut clock = FakeClock {
+            now: Duration::ZERO,
+            slept: Vec::new(),
+        };
+        let mut warnings = Vec::new();
+        let mut warn = |w: String| warnings.push(w);
+        let mut rt = RealTime::new(&mut clock, 10_000_000, &stop, &mut warn);
+        // 200 cycles of 20 ms: 4 s, every one an overrun.
+        for k in 1..=200 {
+            assert!(rt.before(k));
+            rt.clock.now += 20 * MS;
+            rt.after(k);
+        }
+        assert_eq!(warnings.len(), 4, "{warnings:?}");
+        assert!(warnings[1].ends_with("(and 49 more overruns since the last warning)"));
     }
 
     #[test]

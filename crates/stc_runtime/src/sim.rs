@@ -23,7 +23,7 @@ use stc_syntax::literal::AddrArea;
 use stc_values::{convert, Value};
 use stc_vm::{Image, Machine, VmFault};
 
-use crate::engine::{read_value, write_value, Engine};
+use crate::engine::{read_value, write_value, Engine, Memory};
 
 use crate::error::{Error, Result};
 use crate::path::{Place, Scope, View};
@@ -94,6 +94,22 @@ pub struct Simulation {
     /// The retained variables restored at a warm start, and their image:
     /// [`Simulation::restart`] restores them again.
     warm: Option<(Retained, Vec<u8>)>,
+    /// Real time: a clock in nanoseconds that measures the tasks of each
+    /// cycle ([`Simulation::measure_with`]); never set in simulation.
+    timer: Option<Box<dyn FnMut() -> u64>>,
+    times: CycleTimes,
+}
+
+/// When the programs of the last cycle ran, on the clock given to
+/// [`Simulation::measure_with`] (nanoseconds).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct CycleTimes {
+    /// When the first program started and the last one ended.
+    pub start: u64,
+    pub end: u64,
+    /// Per task of the plan: when its first program started and its last
+    /// one ended in this cycle, `None` when it did not run.
+    pub tasks: Vec<Option<(u64, u64)>>,
 }
 
 impl Simulation {
@@ -211,6 +227,8 @@ impl Simulation {
             order: Vec::new(),
             task_of,
             warm: None,
+            timer: None,
+            times: CycleTimes::default(),
         };
         sim.apply_sets()?;
         Ok(sim)
@@ -240,6 +258,18 @@ impl Simulation {
             let _ = r.restore(self.engine.as_mut(), image);
         }
         let _ = self.apply_sets();
+    }
+
+    /// Real time: measures the programs of every cycle with `clock`
+    /// (nanoseconds from any fixed start); see [`Simulation::times`].
+    pub fn measure_with(&mut self, clock: Box<dyn FnMut() -> u64>) {
+        self.times.tasks = vec![None; self.plan.tasks.len()];
+        self.timer = Some(clock);
+    }
+
+    /// When the programs of the last cycle ran (all zero unless measured).
+    pub fn times(&self) -> &CycleTimes {
+        &self.times
     }
 
     /// The retained variables of what runs ([`crate::retain`]).
@@ -347,7 +377,14 @@ impl Simulation {
         // The watchdog budget is per task and cycle (a task-less program
         // has its own).
         let mut used = vec![0u64; self.plan.tasks.len()];
+        if let Some(clock) = &mut self.timer {
+            let t = clock();
+            self.times.start = t;
+            self.times.end = t;
+            self.times.tasks.fill(None);
+        }
         for &i in order {
+            let started = self.timer.as_mut().map(|c| c());
             let task = self.task_of.get(i).copied().flatten();
             let budget = match task {
                 Some(t) => self.max_steps.saturating_sub(used[t]),
@@ -379,6 +416,13 @@ impl Simulation {
                 let src = inst.offset.wrapping_add(*off);
                 copy(&self.model, self.engine.as_mut(), src, *ty, *offset, *dty)
                     .map_err(|k| connection_fault(&self.model, inst, k))?;
+            }
+            if let (Some(clock), Some(s)) = (&mut self.timer, started) {
+                let e = clock();
+                self.times.end = e;
+                if let Some(slot) = task.and_then(|t| self.times.tasks.get_mut(t)) {
+                    *slot = Some(slot.map_or((s, e), |(s0, _)| (s0, e)));
+                }
             }
         }
         Ok(())
@@ -434,7 +478,7 @@ fn writable(place: Place) -> Result<Place> {
 }
 
 /// Writes a value to a place; false when it is not in memory.
-fn write(model: &Model, engine: &mut dyn Engine, place: &Place, v: &Value) -> bool {
+pub fn write(model: &Model, engine: &mut dyn Memory, place: &Place, v: &Value) -> bool {
     let (Some(addr), View::Type(ty)) = (place.loc.address(engine), &place.view) else {
         return false;
     };
@@ -584,6 +628,9 @@ pub trait Between {
     fn after_cycle(&mut self, _sim: &mut Simulation, _k: u64) {}
     /// The run ends without a fault, after cycle `sim.completed()`.
     fn at_end(&mut self, _sim: &mut Simulation) {}
+    /// Cycle `k` faulted and the run stops (the memory is that of the
+    /// faulting cycle).
+    fn faulted(&mut self, _sim: &mut Simulation, _k: u64, _fault: &VmFault) {}
 }
 
 /// Nothing between cycles.
@@ -632,6 +679,7 @@ pub fn run_between(
                 }
             }
             Err(fault) => {
+                between.faulted(sim, k, &fault);
                 if !emitted_last {
                     sim.restart();
                     for _ in 1..k {

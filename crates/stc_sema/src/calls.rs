@@ -77,7 +77,10 @@ impl<'a> Sema<'a> {
             if !is_var {
                 // A METHOD of the running instance's function block.
                 if let Scope::Pou(p) = scope {
-                    if let Some(m) = self.own_fb(p).and_then(|fb| self.find_method(fb, id.sym)) {
+                    if let Some(m) = self
+                        .own_instance(p)
+                        .and_then(|fb| self.find_method(fb, id.sym))
+                    {
                         return self.method_call(e, m, None, args, scope, span, id.span);
                     }
                 }
@@ -310,7 +313,7 @@ impl<'a> Sema<'a> {
             self.pous[m.0 as usize].access,
             Some(stc_syntax::ast::Access::Private | stc_syntax::ast::Access::Protected)
         );
-        let inside = matches!(scope, Scope::Pou(p) if self.own_fb(p) == Some(fb));
+        let inside = matches!(scope, Scope::Pou(p) if self.own_instance(p) == Some(fb));
         if private && !inside {
             let shown = self.sym_name(self.pous[m.0 as usize].name);
             let decl = self.pous[m.0 as usize].name_span;

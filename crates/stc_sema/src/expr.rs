@@ -149,10 +149,24 @@ impl<'a> Sema<'a> {
     /// The function block whose instance runs a POU's code: the block
     /// itself, or the block a METHOD belongs to.
     pub(crate) fn own_fb(&self, p: PouId) -> Option<PouId> {
+        self.own_instance(p)
+            .filter(|&q| self.pous[q.0 as usize].kind == stc_syntax::ast::PouKind::FunctionBlock)
+    }
+
+    /// The function block or program whose instance POU `p` runs on: `p`
+    /// itself, or the POU a METHOD or ACTION belongs to (a PROGRAM has
+    /// ACTIONs, not methods: no `THIS`).
+    pub(crate) fn own_instance(&self, p: PouId) -> Option<PouId> {
         let def = &self.pous[p.0 as usize];
         match def.method_of {
             Some((fb, _)) => Some(fb),
-            None if def.kind == stc_syntax::ast::PouKind::FunctionBlock => Some(p),
+            None if matches!(
+                def.kind,
+                stc_syntax::ast::PouKind::FunctionBlock | stc_syntax::ast::PouKind::Program
+            ) =>
+            {
+                Some(p)
+            }
             None => None,
         }
     }

@@ -387,7 +387,10 @@ impl Parser<'_> {
         }
         if self.at_word("ACTION")
             && matches!(self.nth_kind(1), TokenKind::Ident)
-            && self.pou_kind == Some(PouKind::FunctionBlock)
+            && matches!(
+                self.pou_kind,
+                Some(PouKind::FunctionBlock | PouKind::Program)
+            )
             && !self.in_method
             && !self.in_action
         {
@@ -405,11 +408,7 @@ impl Parser<'_> {
                 "methods outside a function block are",
             ),
             ("PROPERTY", "END_PROPERTY", "properties are"),
-            (
-                "ACTION",
-                "END_ACTION",
-                "actions outside a function block are",
-            ),
+            ("ACTION", "END_ACTION", "actions of a FUNCTION are"),
         ] {
             if self.at_word(word) && self.nth_kind(1) == TokenKind::Ident {
                 let span = self.tok().span();

@@ -208,7 +208,9 @@ impl<'a> Sema<'a> {
                 self.loose_args(args, scope);
                 return TypeId::ERROR;
             }
-            if let TypeKind::Fb(fb) = *self.types.kind(bt) {
+            // (An interface value: its instance's method.)
+            let receiver = self.interface_of(bt).map(|i| self.pou_type(i)).unwrap_or(bt);
+            if let TypeKind::Fb(fb) = *self.types.kind(receiver) {
                 if let Some(m) = self.find_method(fb, member.sym) {
                     return self.method_call(e, m, Some(*base), args, scope, span, member.span);
                 }
@@ -306,11 +308,14 @@ impl<'a> Sema<'a> {
         name_span: Span,
     ) -> TypeId {
         let (fb, _) = self.pous[m.0 as usize].method_of.unwrap_or((m, 0));
+        let access = self.pous[m.0 as usize].access;
         let private = matches!(
-            self.pous[m.0 as usize].access,
+            access,
             Some(stc_syntax::ast::Access::Private | stc_syntax::ast::Access::Protected)
         );
-        let inside = matches!(scope, Scope::Pou(p) if self.own_fb(p) == Some(fb));
+        // PROTECTED: also from the blocks derived from it.
+        let protected = access == Some(stc_syntax::ast::Access::Protected);
+        let inside = matches!(scope, Scope::Pou(p) if self.own_fb(p).is_some_and(|o| o == fb || protected && self.types.is_subtype(o, fb)));
         if private && !inside {
             let shown = self.sym_name(self.pous[m.0 as usize].name);
             let decl = self.pous[m.0 as usize].name_span;

@@ -69,11 +69,17 @@ impl<'a> Sema<'a> {
             [p.0 as usize]
             .vars
             .iter()
-            .filter(|v| !v.implicit)
-            .map(|v| {
+            .enumerate()
+            .filter(|(_, v)| !v.implicit)
+            .map(|(i, v)| {
                 // A declaration whose type was already an error (an
-                // unsupported or unknown type) is not reported again.
-                let quiet = v.location.is_some() || v.ty == crate::TypeId::ERROR;
+                // unsupported or unknown type) is not reported again; nor
+                // the tag and what is inherited (the base's business).
+                let def = &self.pous[p.0 as usize];
+                let quiet = v.location.is_some()
+                    || v.ty == crate::TypeId::ERROR
+                    || (i as u32) < def.inherited
+                    || def.tag == Some(VarId(i as u32));
                 (v.name, v.span, v.section, quiet, v.ty)
             })
             .collect();

@@ -15,7 +15,10 @@ use crate::{PouId, Res};
 impl<'a> Sema<'a> {
     pub(crate) fn check_body(&mut self, p: PouId, pou: &'a Pou) {
         self.resolve_pou(p);
-        self.body = Body::default();
+        self.body = Body {
+            current: Some(p),
+            ..Body::default()
+        };
         self.stmts(&pou.body, p);
         if let Some(il) = &pou.il {
             self.il_body(p, il);

@@ -114,6 +114,10 @@ pub struct TypeTable {
     types: Vec<TypeInfo>,
     strings: rustc_hash::FxHashMap<(bool, u32), TypeId>,
     refs: rustc_hash::FxHashMap<TypeId, TypeId>,
+    /// Per function block, class or interface: the POUs it extends or
+    /// implements directly (docs/oop.md); an instance of it is one of
+    /// theirs.
+    supers: rustc_hash::FxHashMap<crate::PouId, Vec<crate::PouId>>,
 }
 
 /// How a value of one type can be stored in another.
@@ -140,6 +144,7 @@ impl TypeTable {
             types: Vec::new(),
             strings: Default::default(),
             refs: Default::default(),
+            supers: Default::default(),
         };
         t.add(TypeKind::Error, None, None);
         t.add(TypeKind::Void, None, None);
@@ -195,6 +200,11 @@ impl TypeTable {
         let r = self.add(TypeKind::Ref(t), None, None);
         self.refs.insert(t, r);
         r
+    }
+
+    /// The reference type to `t`, if the table has it.
+    pub fn find_ref(&self, t: TypeId) -> Option<TypeId> {
+        self.refs.get(&t).copied()
     }
 
     /// The target type of a reference type (VOID for `NULL`'s type).
@@ -261,8 +271,46 @@ impl TypeTable {
     }
 
     /// Can a value of type `from` be stored in `to`?
+    /// Records that `p` extends or implements `sup` directly.
+    pub fn add_super(&mut self, p: crate::PouId, sup: crate::PouId) {
+        self.supers.entry(p).or_default().push(sup);
+    }
+
+    /// The POUs `p` extends or implements directly.
+    pub fn supers(&self, p: crate::PouId) -> &[crate::PouId] {
+        self.supers.get(&p).map_or(&[], |v| v.as_slice())
+    }
+
+    /// Whether an instance of `a` is an instance of `b`: `a` is `b`, or
+    /// extends or implements it, directly or not.
+    pub fn is_subtype(&self, a: crate::PouId, b: crate::PouId) -> bool {
+        let mut stack = vec![a];
+        let mut seen = rustc_hash::FxHashSet::default();
+        while let Some(p) = stack.pop() {
+            if p == b {
+                return true;
+            }
+            if seen.insert(p) {
+                stack.extend_from_slice(self.supers(p));
+            }
+        }
+        false
+    }
+
+    /// Whether the function block type `from` is a proper subtype of `to`.
+    fn fb_subtype(&self, from: TypeId, to: TypeId) -> bool {
+        match (self.kind(from), self.kind(to)) {
+            (TypeKind::Fb(a), TypeKind::Fb(b)) => a != b && self.is_subtype(*a, *b),
+            _ => false,
+        }
+    }
+
     pub fn compat(&self, from: TypeId, to: TypeId, iec2: bool) -> Compat {
         if from == to || from == TypeId::ERROR || to == TypeId::ERROR {
+            return Compat::Same;
+        }
+        if self.fb_subtype(from, to) {
+            // A derived instance where its base is expected (a VAR_IN_OUT).
             return Compat::Same;
         }
         match (self.kind(from), self.kind(to)) {
@@ -283,6 +331,7 @@ impl TypeTable {
                     || *a == *b
                     || *a == TypeId::ERROR
                     || *b == TypeId::ERROR
+                    || self.fb_subtype(*a, *b)
                     || self.compat(*a, *b, false) == Compat::Same
                         && self.compat(*b, *a, false) == Compat::Same;
                 if same {

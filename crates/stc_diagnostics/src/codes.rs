@@ -611,12 +611,6 @@ the same result type. Make the signatures the same.";
 interface. The instance here is of a type that does not implement it (nor
 do its bases). Add the interface to the block's IMPLEMENTS, or use an
 interface it implements.";
-    E1327 Error "assignment attempt needs references or interfaces"
-"`a ?= b` assigns `b` to `a` when the instance `b` refers to is of `a`'s
-type (else NULL). Both sides must be interface values or references to
-function blocks or classes (the target a variable), and the instance's
-type must be able to fit: one type extends or implements the other.
-Use `:=` for other values.";
 
     W0101 Warning "result depends on evaluation order"
 "A variable is written by an output parameter (`=>`) or VAR_IN_OUT of one call

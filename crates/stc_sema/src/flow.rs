@@ -146,8 +146,11 @@ impl<'a> Sema<'a> {
         // (An ABSTRACT method has no body to assign its result.)
         let abstract_method = self.pous[p.0 as usize]
             .method_of
-            .and_then(|(fb, k)| self.pou_ast(fb)?.methods.get(k))
-            .is_some_and(|m| m.is_abstract);
+            .and_then(|(fb, k)| {
+                let owner = self.pou_ast(fb)?;
+                Some(owner.is_interface() || owner.methods.get(k)?.is_abstract)
+            })
+            .unwrap_or(false);
         let result_known = self.pous[p.0 as usize]
             .return_type
             .is_some_and(|t| t != crate::TypeId::ERROR)

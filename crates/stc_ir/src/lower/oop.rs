@@ -8,14 +8,12 @@
 //! type (a reference retyped: the same address, since a base instance is a
 //! prefix of a derived one).
 
-use stc_diagnostics::Span;
 use stc_sema::{CallInfo, PouId, TypeId, TypeKind, VarId};
 use stc_syntax::ast::{ClassKind, ExprId, ExprKind as AK};
 use stc_syntax::Symbol;
-use stc_values::{BinOp, Value};
 
 use super::Lowerer;
-use crate::{Expr, ExprKind, Place, Proj, Root, Stmt, StmtKind, Storage, SwitchArm};
+use crate::{Expr, ExprKind, Place, Proj, Root, StmtKind, Storage, SwitchArm};
 
 impl<'a> Lowerer<'a> {
     /// The type of the instances of function block (class, interface) `p`.
@@ -307,115 +305,5 @@ impl<'a> Lowerer<'a> {
             kind: ExprKind::Load(self.var_place(r, ty)),
             ty,
         }))
-    }
-
-    /// `target ?= value`: `target := value` when the instance `value`
-    /// refers to is of `target`'s type (its tag is one of the types
-    /// derived from or implementing it), else NULL.
-    pub(super) fn assignment_attempt(&mut self, target: ExprId, value: ExprId, span: Span) -> Vec<Stmt> {
-        let place = self.place(target);
-        let v = self.expr(value);
-        let Some(want) = self
-            .a
-            .types
-            .ref_target(place.ty)
-            .and_then(|t| self.fb_of(t))
-        else {
-            return Vec::new();
-        };
-        let Some(from) = self.a.types.ref_target(v.ty).and_then(|t| self.fb_of(t)) else {
-            return Vec::new();
-        };
-        let from_ty = self.fb_type(from);
-        let tmp = self.hidden(self.a.pou(from).name, "attempt", v.ty, Storage::Frame, span);
-        let tmp_place = self.var_place(tmp, v.ty);
-        let load = Expr {
-            kind: ExprKind::Load(tmp_place.clone()),
-            ty: v.ty,
-        };
-        let mut tags: Vec<(i128, i128)> = Vec::new();
-        for d in 0..self.a.pous.len() as u32 {
-            let d = PouId(d);
-            if self.instantiable(d)
-                && self.a.types.is_subtype(d, want)
-                && self.a.types.is_subtype(d, from)
-            {
-                let t = i128::from(stc_sema::PouDef::tag_value(d));
-                tags.push((t, t));
-            }
-        }
-        let null = Expr {
-            kind: ExprKind::Null,
-            ty: place.ty,
-        };
-        let bool_ty = TypeId::of_elem(stc_syntax::token::ElemType::Bool);
-        let mut out = vec![
-            self.stmt_at(
-                span,
-                StmtKind::Assign {
-                    place: tmp_place.clone(),
-                    value: v,
-                },
-            ),
-            self.stmt_at(
-                span,
-                StmtKind::Assign {
-                    place: place.clone(),
-                    value: null.clone(),
-                },
-            ),
-        ];
-        if tags.is_empty() || self.a.pou(from).tag.is_none() {
-            return out;
-        }
-        let mut tag_place = Place {
-            root: Root::Deref(Box::new(load.clone())),
-            proj: vec![Proj::FbVar(from, VarId(0))],
-            ty: TypeId::of_elem(stc_syntax::token::ElemType::Udint),
-        };
-        let _ = from_ty;
-        tag_place.ty = TypeId::of_elem(stc_syntax::token::ElemType::Udint);
-        let assign = self.stmt_at(
-            span,
-            StmtKind::Assign {
-                place,
-                value: self.retype_ref(load.clone(), want),
-            },
-        );
-        let switch = self.stmt_at(
-            span,
-            StmtKind::Switch {
-                selector: Expr {
-                    kind: ExprKind::Load(tag_place),
-                    ty: TypeId::of_elem(stc_syntax::token::ElemType::Udint),
-                },
-                arms: vec![SwitchArm {
-                    ranges: tags,
-                    body: vec![assign],
-                }],
-                default: Vec::new(),
-            },
-        );
-        let cond = Expr {
-            kind: ExprKind::Binary(
-                BinOp::Ne,
-                Box::new(load),
-                Box::new(Expr {
-                    kind: ExprKind::Null,
-                    ty: tmp_place.ty,
-                }),
-            ),
-            ty: bool_ty,
-        };
-        out.push(self.stmt_at(
-            span,
-            StmtKind::If {
-                cond,
-                then_body: vec![switch],
-                else_body: Vec::new(),
-            },
-        ));
-        let _ = Value::Bool(true);
-        out
     }
 }

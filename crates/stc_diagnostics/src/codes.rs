@@ -612,6 +612,13 @@ interface. The instance here is of a type that does not implement it (nor
 do its bases). Add the interface to the block's IMPLEMENTS, or use an
 interface it implements.";
 
+    E1327 Error "assignment attempt needs references or interfaces"
+"`a ?= b` assigns `b` to `a` when the instance `b` refers to is of `a`'s
+type, else NULL. Both sides must be interface values or references to
+function blocks or classes (the target a variable), and the instance could
+fit: one type extends or implements the other, or one is an interface.
+Use `:=` for other values.";
+
     W0101 Warning "result depends on evaluation order"
 "A variable is written by an output parameter (`=>`) or VAR_IN_OUT of one call
 and read by another argument of the same enclosing call. IEC 61131-3 does not

@@ -85,7 +85,10 @@ pub fn lower(ast: &Ast, analysis: Analysis, interner: &Interner, sources: &Sourc
             // (A METHOD's hidden THIS is bound by every call.)
             // (A base's are also its derived blocks' hidden variables.)
             p.this.is_some()
-                || analysis.pous.iter().any(|d| d.base == Some(PouId(i as u32)))
+                || analysis
+                    .pous
+                    .iter()
+                    .any(|d| d.base == Some(PouId(i as u32)))
                 || p.vars.iter().enumerate().any(|(v, var)| {
                     var.implicit
                         && analysis
@@ -346,6 +349,11 @@ impl<'a> Lowerer<'a> {
         let at = |l: &Self, k| l.stmt_at(s.span, k);
         match &s.kind {
             SK::Empty | SK::Error | SK::Unsupported(_) => {}
+            SK::AssignAttempt { target, value } => {
+                let mut stmts = self.assignment_attempt(*target, *value, s.span);
+                out.append(&mut self.pending);
+                out.append(&mut stmts);
+            }
             SK::Assign { target, value } => {
                 let place = self.place(*target);
                 let mut v = self.expr(*value);

@@ -209,7 +209,10 @@ impl<'a> Sema<'a> {
                 return TypeId::ERROR;
             }
             // (An interface value: its instance's method.)
-            let receiver = self.interface_of(bt).map(|i| self.pou_type(i)).unwrap_or(bt);
+            let receiver = self
+                .interface_of(bt)
+                .map(|i| self.pou_type(i))
+                .unwrap_or(bt);
             if let TypeKind::Fb(fb) = *self.types.kind(receiver) {
                 if let Some(m) = self.find_method(fb, member.sym) {
                     return self.method_call(e, m, Some(*base), args, scope, span, member.span);

@@ -83,17 +83,20 @@ impl<'a> Sema<'a> {
                             b.span,
                             match other {
                                 Some(GlobalName::Pou(q)) => format!(
-                                    "`{shown}` is a {} and cannot be extended here",
+                                    "`{shown}` is {} and cannot be extended here",
                                     self.pou_kind_word(q)
                                 ),
-                                Some(_) => format!("`{shown}` is a data type, not a function block"),
+                                Some(_) => {
+                                    format!("`{shown}` is a data type, not a function block")
+                                }
                                 None => format!("unknown base `{shown}`"),
                             },
                         )
                         .with_label("EXTENDS needs a base")
                         .with_help(what);
                         if let Some(GlobalName::Pou(q)) = other {
-                            d = d.with_secondary(self.pous[q.0 as usize].name_span, "declared here");
+                            d = d
+                                .with_secondary(self.pous[q.0 as usize].name_span, "declared here");
                         }
                         self.emit(d);
                     }
@@ -127,7 +130,10 @@ impl<'a> Sema<'a> {
                             i.span,
                             match other {
                                 Some(GlobalName::Pou(q)) => {
-                                    format!("`{shown}` is a {}, not an INTERFACE", self.pou_kind_word(q))
+                                    format!(
+                                        "`{shown}` is a {}, not an INTERFACE",
+                                        self.pou_kind_word(q)
+                                    )
                                 }
                                 Some(_) => format!("`{shown}` is a data type, not an INTERFACE"),
                                 None => format!("unknown interface `{shown}`"),
@@ -135,7 +141,8 @@ impl<'a> Sema<'a> {
                         )
                         .with_label("an INTERFACE is expected here");
                         if let Some(GlobalName::Pou(q)) = other {
-                            d = d.with_secondary(self.pous[q.0 as usize].name_span, "declared here");
+                            d = d
+                                .with_secondary(self.pous[q.0 as usize].name_span, "declared here");
                         }
                         self.emit(d);
                     }
@@ -185,9 +192,9 @@ impl<'a> Sema<'a> {
                 span: self.pous[p].name_span,
                 section: Section::Var,
                 ty: udint,
-                init: Some(InitValue::Scalar(Value::Int(i128::from(PouDef::tag_value(
-                    PouId(p as u32),
-                ))))),
+                init: Some(InitValue::Scalar(Value::Int(i128::from(
+                    PouDef::tag_value(PouId(p as u32)),
+                )))),
                 constant: false,
                 retain: false,
                 location: None,
@@ -373,7 +380,11 @@ impl<'a> Sema<'a> {
         let mut clashes = Vec::new();
         for &(sym, v) in named {
             match def.var_index.get(&sym) {
-                Some(&mine) => clashes.push((def.vars[mine.0 as usize].span, base_spans[v.0 as usize], sym)),
+                Some(&mine) => clashes.push((
+                    def.vars[mine.0 as usize].span,
+                    base_spans[v.0 as usize],
+                    sym,
+                )),
                 None => {
                     def.var_index.insert(sym, v);
                 }
@@ -479,10 +490,12 @@ impl<'a> Sema<'a> {
         }
         if class == ClassKind::Interface {
             for m in &ast.methods {
-                if !m.pou.body.is_empty() || !m.pou.var_blocks.iter().all(|b| {
-                    use stc_syntax::ast::VarKind;
-                    matches!(b.kind, VarKind::Input | VarKind::Output | VarKind::InOut)
-                }) {
+                if !m.pou.body.is_empty()
+                    || !m.pou.var_blocks.iter().all(|b| {
+                        use stc_syntax::ast::VarKind;
+                        matches!(b.kind, VarKind::Input | VarKind::Output | VarKind::InOut)
+                    })
+                {
                     self.emit(
                         Diagnostic::new(
                             Code::E1318,
@@ -634,7 +647,14 @@ impl<'a> Sema<'a> {
                 }
                 let ishown = self.sym_name(self.pous[i.0 as usize].name);
                 let mshown = self.sym_name(name);
-                match self.find_method(p, name) {
+                // (A prototype found through the interfaces is no
+                // implementation.)
+                let found = self.find_method(p, name).filter(|m| {
+                    let owner = self.pous[m.0 as usize].method_of.map(|(o, _)| o);
+                    owner
+                        .is_none_or(|o| self.pous[o.0 as usize].class != Some(ClassKind::Interface))
+                });
+                match found {
                     None => {
                         reported.push(name);
                         self.emit(
@@ -644,7 +664,10 @@ impl<'a> Sema<'a> {
                                 format!("`{shown}` does not implement `{ishown}.{mshown}`"),
                             )
                             .with_label(format!("implements `{ishown}`"))
-                            .with_secondary(self.pous[im.0 as usize].name_span, "the interface's method"),
+                            .with_secondary(
+                                self.pous[im.0 as usize].name_span,
+                                "the interface's method",
+                            ),
                         );
                     }
                     Some(m) if !self.same_signature(m, im) => {
@@ -653,15 +676,63 @@ impl<'a> Sema<'a> {
                             Diagnostic::new(
                                 Code::E1325,
                                 self.pous[m.0 as usize].name_span,
-                                format!("`{mshown}` does not have the signature of `{ishown}.{mshown}`"),
+                                format!(
+                                    "`{mshown}` does not have the signature of `{ishown}.{mshown}`"
+                                ),
                             )
                             .with_label("parameters or result differ")
-                            .with_secondary(self.pous[im.0 as usize].name_span, "the interface's method"),
+                            .with_secondary(
+                                self.pous[im.0 as usize].name_span,
+                                "the interface's method",
+                            ),
                         );
                     }
                     Some(_) => {}
                 }
             }
+        }
+    }
+
+    /// `target ?= value` (docs/oop.md): both interface values or
+    /// references to blocks or classes whose instance may fit (E1327).
+    pub(crate) fn assign_attempt(
+        &mut self,
+        target: stc_syntax::ast::ExprId,
+        value: stc_syntax::ast::ExprId,
+        p: PouId,
+    ) {
+        let scope = crate::analyzer::Scope::Pou(p);
+        let tt = self.check_lvalue(target, scope, crate::calls::Write::Assign);
+        let vt = self.check_expr(value, None, scope);
+        if tt == TypeId::ERROR || vt == TypeId::ERROR {
+            return;
+        }
+        let fb = |s: &Self, t: TypeId| match s.types.ref_target(t).map(|x| s.types.kind(x)) {
+            Some(crate::types::TypeKind::Fb(q)) => Some(*q),
+            _ => None,
+        };
+        let itf = |s: &Self, q: PouId| s.pous[q.0 as usize].class == Some(ClassKind::Interface);
+        let fits = match (fb(self, tt), fb(self, vt)) {
+            (Some(a), Some(b)) => {
+                itf(self, a)
+                    || itf(self, b)
+                    || self.types.is_subtype(a, b)
+                    || self.types.is_subtype(b, a)
+            }
+            _ => false,
+        };
+        if !fits {
+            let (a, b) = (self.tname(tt), self.tname(vt));
+            self.emit(
+                Diagnostic::new(
+                    Code::E1327,
+                    self.ast.expr(value).span,
+                    format!("`?=` cannot assign a value of type {b} to one of type {a}"),
+                )
+                .with_label(format!("this is {b}"))
+                .with_secondary(self.ast.expr(target).span, format!("this is {a}"))
+                .with_help("both sides are interface values or references to related function blocks or classes"),
+            );
         }
     }
 }

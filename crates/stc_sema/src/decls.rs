@@ -793,7 +793,9 @@ impl<'a> Sema<'a> {
                 }
                 // An interface value: a reference to an instance of a
                 // block implementing it (NULL until assigned).
-                _ if self.pous[p.0 as usize].class == Some(stc_syntax::ast::ClassKind::Interface) => {
+                _ if self.pous[p.0 as usize].class
+                    == Some(stc_syntax::ast::ClassKind::Interface) =>
+                {
                     let t = self.pou_type(p);
                     (self.types.ref_to(t), None)
                 }
@@ -1027,7 +1029,10 @@ impl<'a> Sema<'a> {
             }
             State::Todo => {}
         }
-        if let Some(b) = self.pous[pi].base.filter(|_| (vi as u32) < self.pous[pi].inherited) {
+        if let Some(b) = self.pous[pi]
+            .base
+            .filter(|_| (vi as u32) < self.pous[pi].inherited)
+        {
             // Inherited: the base's type and initial value.
             self.pou_var_state[pi][vi] = State::InProgress;
             self.ensure_var(b, v);

@@ -1827,7 +1827,11 @@ impl<'a> Sema<'a> {
     pub(crate) fn interface_of(&self, to: TypeId) -> Option<PouId> {
         let target = self.types.ref_target(to)?;
         match *self.types.kind(target) {
-            TypeKind::Fb(i) if self.pous[i.0 as usize].class == Some(stc_syntax::ast::ClassKind::Interface) => Some(i),
+            TypeKind::Fb(i)
+                if self.pous[i.0 as usize].class == Some(stc_syntax::ast::ClassKind::Interface) =>
+            {
+                Some(i)
+            }
             _ => None,
         }
     }
@@ -1835,7 +1839,13 @@ impl<'a> Sema<'a> {
     /// An instance where an interface value is expected (`itf := inst`):
     /// the reference to it, when its type implements the interface (E1326)
     /// and it lives as long as the program (E1303). `None`: not that case.
-    fn instance_as_interface(&mut self, e: ExprId, from: TypeId, to: TypeId, what: &str) -> Option<bool> {
+    fn instance_as_interface(
+        &mut self,
+        e: ExprId,
+        from: TypeId,
+        to: TypeId,
+        what: &str,
+    ) -> Option<bool> {
         let i = self.interface_of(to)?;
         let TypeKind::Fb(d) = *self.types.kind(from) else {
             return None;

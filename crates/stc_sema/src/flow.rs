@@ -62,6 +62,11 @@ impl<'a> Sema<'a> {
         if self.pous[p.0 as usize].is_std {
             return;
         }
+        // An INTERFACE and its prototypes have no body: nothing is used.
+        let owner = self.own_fb(p).unwrap_or(p);
+        if self.pous[owner.0 as usize].class == Some(stc_syntax::ast::ClassKind::Interface) {
+            return;
+        }
         // A part reported as not supported (an IL or SFC body, a METHOD...)
         // may use any variable and assign the result: nothing is known.
         let partial = pou.partial || self.body.partial;

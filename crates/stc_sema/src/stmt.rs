@@ -69,6 +69,9 @@ impl<'a> Sema<'a> {
                     self.check_expr(e, Some(TypeId::ERROR), scope);
                 }
             }
+            StmtKind::AssignAttempt { target, value } => {
+                self.assign_attempt(*target, *value, p);
+            }
             StmtKind::Assign { target, value } => {
                 let tt = self.check_lvalue(*target, scope, Write::Assign);
                 let vt = self.check_expr(*value, Some(tt), scope);

@@ -269,6 +269,13 @@ pub enum StmtKind {
         target: ExprId,
         value: ExprId,
     },
+    /// `target ?= value` (assignment attempt, 3rd edition): the reference
+    /// or interface value `value` when the instance it refers to fits
+    /// `target`'s type, else NULL.
+    AssignAttempt {
+        target: ExprId,
+        value: ExprId,
+    },
     /// A call used as a statement (a function block or function call).
     Call(ExprId),
     If {

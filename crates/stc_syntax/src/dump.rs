@@ -123,8 +123,16 @@ impl Dumper<'_> {
             let _ = write!(text, " EXTENDS {}", self.name(*b));
         }
         if !p.implements.is_empty() {
-            let word = if p.is_interface() { "EXTENDS" } else { "IMPLEMENTS" };
-            let names: Vec<String> = p.implements.iter().map(|i| self.name(*i).to_string()).collect();
+            let word = if p.is_interface() {
+                "EXTENDS"
+            } else {
+                "IMPLEMENTS"
+            };
+            let names: Vec<String> = p
+                .implements
+                .iter()
+                .map(|i| self.name(*i).to_string())
+                .collect();
             let _ = write!(text, " {word} {}", names.join(", "));
         }
         if let Some(r) = &p.return_type {
@@ -362,6 +370,14 @@ impl Dumper<'_> {
             StmtKind::Error => self.line(s.span, "Error"),
             StmtKind::Assign { target, value } => {
                 let text = format!("Assign {} := {}", self.expr(*target), self.expr(*value));
+                self.line(s.span, &text);
+            }
+            StmtKind::AssignAttempt { target, value } => {
+                let text = format!(
+                    "AssignAttempt {} ?= {}",
+                    self.expr(*target),
+                    self.expr(*value)
+                );
                 self.line(s.span, &text);
             }
             StmtKind::Call(e) => {

@@ -145,8 +145,16 @@ impl Printer<'_> {
             let _ = write!(head, " EXTENDS {}", self.name(*b));
         }
         if !pou.implements.is_empty() {
-            let word = if pou.is_interface() { "EXTENDS" } else { "IMPLEMENTS" };
-            let names: Vec<String> = pou.implements.iter().map(|i| self.name(*i).to_string()).collect();
+            let word = if pou.is_interface() {
+                "EXTENDS"
+            } else {
+                "IMPLEMENTS"
+            };
+            let names: Vec<String> = pou
+                .implements
+                .iter()
+                .map(|i| self.name(*i).to_string())
+                .collect();
             let _ = write!(head, " {word} {}", names.join(", "));
         }
         if let Some(r) = &pou.return_type {
@@ -394,6 +402,10 @@ impl Printer<'_> {
             StmtKind::Error => self.line("(* unparsable statement *)"),
             StmtKind::Assign { target, value } => {
                 let text = format!("{} := {};", self.expr(*target, 0), self.expr(*value, 0));
+                self.line(&text);
+            }
+            StmtKind::AssignAttempt { target, value } => {
+                let text = format!("{} ?= {};", self.expr(*target, 0), self.expr(*value, 0));
                 self.line(&text);
             }
             StmtKind::Call(e) => {

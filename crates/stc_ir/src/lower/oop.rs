@@ -8,12 +8,15 @@
 //! type (a reference retyped: the same address, since a base instance is a
 //! prefix of a derived one).
 
+use stc_diagnostics::Span;
 use stc_sema::{CallInfo, PouId, TypeId, TypeKind, VarId};
 use stc_syntax::ast::{ClassKind, ExprId, ExprKind as AK};
 use stc_syntax::Symbol;
 
 use super::Lowerer;
-use crate::{Expr, ExprKind, Place, Proj, Root, StmtKind, Storage, SwitchArm};
+use stc_values::BinOp;
+
+use crate::{Expr, ExprKind, Place, Proj, Root, Stmt, StmtKind, Storage, SwitchArm};
 
 impl<'a> Lowerer<'a> {
     /// The type of the instances of function block (class, interface) `p`.
@@ -287,7 +290,10 @@ impl<'a> Lowerer<'a> {
             .enumerate()
             .filter(|(i, _)| *i != default_at)
             .map(|(_, (m, tags))| SwitchArm {
-                ranges: tags.iter().map(|&t| (i128::from(t), i128::from(t))).collect(),
+                ranges: tags
+                    .iter()
+                    .map(|&t| (i128::from(t), i128::from(t)))
+                    .collect(),
                 body: call(self, *m),
             })
             .collect();
@@ -305,5 +311,129 @@ impl<'a> Lowerer<'a> {
             kind: ExprKind::Load(self.var_place(r, ty)),
             ty,
         }))
+    }
+
+    /// `target ?= value`: `target := value` when the instance `value`
+    /// refers to is of `target`'s type (its tag is one of the types
+    /// derived from or implementing it), else NULL. Checked against NULL
+    /// first: NULL gives NULL.
+    pub(super) fn assignment_attempt(
+        &mut self,
+        target: ExprId,
+        value: ExprId,
+        span: Span,
+    ) -> Vec<Stmt> {
+        let place = self.place(target);
+        let v = self.expr(value);
+        let null = Expr {
+            kind: ExprKind::Null,
+            ty: place.ty,
+        };
+        let set_null = self.stmt_at(
+            span,
+            StmtKind::Assign {
+                place: place.clone(),
+                value: null,
+            },
+        );
+        let fb = |l: &Self, t: TypeId| l.a.types.ref_target(t).and_then(|x| l.fb_of(x));
+        let (Some(want), Some(from)) = (fb(self, place.ty), fb(self, v.ty)) else {
+            return vec![set_null];
+        };
+        let from_ty = self.fb_type(from);
+        let ref_ty = self.a.types.find_ref(from_ty).unwrap_or(v.ty);
+        let tmp = self.hidden(
+            self.a.pou(from).name,
+            "attempt",
+            ref_ty,
+            Storage::Frame,
+            span,
+        );
+        let tmp_place = self.var_place(tmp, ref_ty);
+        let load = Expr {
+            kind: ExprKind::Load(tmp_place.clone()),
+            ty: ref_ty,
+        };
+        let mut out = vec![
+            self.stmt_at(
+                span,
+                StmtKind::Assign {
+                    place: tmp_place,
+                    value: Expr { ty: ref_ty, ..v },
+                },
+            ),
+            set_null,
+        ];
+        let assign = self.stmt_at(
+            span,
+            StmtKind::Assign {
+                place,
+                value: self.retype_ref(load.clone(), want),
+            },
+        );
+        let udint = TypeId::of_elem(stc_syntax::token::ElemType::Udint);
+        let bool_ty = TypeId::of_elem(stc_syntax::token::ElemType::Bool);
+        let check = if self.a.pou(from).tag.is_none() {
+            // No tag: the instance is of exactly `from`.
+            if !self.a.types.is_subtype(from, want) {
+                return out;
+            }
+            assign
+        } else {
+            let tags: Vec<(i128, i128)> = (0..self.a.pous.len() as u32)
+                .map(PouId)
+                .filter(|&d| {
+                    self.instantiable(d)
+                        && self.a.types.is_subtype(d, want)
+                        && self.a.types.is_subtype(d, from)
+                })
+                .map(|d| {
+                    let t = i128::from(stc_sema::PouDef::tag_value(d));
+                    (t, t)
+                })
+                .collect();
+            if tags.is_empty() {
+                return out;
+            }
+            let tag_place = Place {
+                root: Root::Deref(Box::new(load.clone())),
+                proj: vec![Proj::FbVar(from, VarId(0))],
+                ty: udint,
+            };
+            self.stmt_at(
+                span,
+                StmtKind::Switch {
+                    selector: Expr {
+                        kind: ExprKind::Load(tag_place),
+                        ty: udint,
+                    },
+                    arms: vec![SwitchArm {
+                        ranges: tags,
+                        body: vec![assign],
+                    }],
+                    default: Vec::new(),
+                },
+            )
+        };
+        let cond = Expr {
+            kind: ExprKind::Binary(
+                BinOp::Ne,
+                Box::new(load),
+                Box::new(Expr {
+                    kind: ExprKind::Null,
+                    ty: ref_ty,
+                }),
+            ),
+            ty: bool_ty,
+        };
+        out.push(self.stmt_at(
+            span,
+            StmtKind::If {
+                cond,
+                then_body: vec![check],
+                else_body: Vec::new(),
+            },
+        ));
+        out
     }
 }

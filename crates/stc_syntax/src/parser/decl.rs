@@ -5,10 +5,10 @@ use stc_diagnostics::{Code, Diagnostic, Span};
 
 use super::{is_item_end, is_item_start, is_var_block_start, Parser};
 use crate::ast::{
-    Access, AccessDecl, ClassKind, AccessDirection, ArrayDim, ArrayInitElem, ConfigInit, Configuration, Edge,
-    EnumMember, Init, InitKind, Item, Located, Method, Pou, PouKind, ProgramConfig, ProgramConn,
-    Resource, Retention, SfcBody, StructInitElem, TaskDecl, TypeDecl, TypeSpec, TypeSpecKind,
-    VarBlock, VarBlockItems, VarDecl, VarKind,
+    Access, AccessDecl, AccessDirection, ArrayDim, ArrayInitElem, ClassKind, ConfigInit,
+    Configuration, Edge, EnumMember, Init, InitKind, Item, Located, Method, Pou, PouKind,
+    ProgramConfig, ProgramConn, Resource, Retention, SfcBody, StructInitElem, TaskDecl, TypeDecl,
+    TypeSpec, TypeSpecKind, VarBlock, VarBlockItems, VarDecl, VarKind,
 };
 use crate::literal;
 use crate::token::{ElemType, Keyword, TokenKind};

@@ -256,6 +256,19 @@ impl<'a> Sema<'a> {
             self.loose_args(args, scope);
             return TypeId::ERROR;
         };
+        if self.pous[fb.0 as usize].class.is_some() {
+            let msg = format!(
+                "an instance of the CLASS `{}` has no body to call",
+                self.tname(t)
+            );
+            self.emit(
+                Diagnostic::new(Code::E0405, callee_span, msg)
+                    .with_label("a CLASS instance")
+                    .with_help("call one of its methods: `inst.m()`"),
+            );
+            self.loose_args(args, scope);
+            return TypeId::ERROR;
+        }
         if let Scope::Pou(p) = scope {
             if self.pous[p.0 as usize].kind == PouKind::Function {
                 // A local instance is already E0501 at its declaration.

@@ -131,7 +131,7 @@ impl<'a> Sema<'a> {
                             match other {
                                 Some(GlobalName::Pou(q)) => {
                                     format!(
-                                        "`{shown}` is a {}, not an INTERFACE",
+                                        "`{shown}` is {}, not an INTERFACE",
                                         self.pou_kind_word(q)
                                     )
                                 }
@@ -157,6 +157,10 @@ impl<'a> Sema<'a> {
         }
         self.break_cycles();
         for p in 0..n {
+            if self.pous[p].class == Some(ClassKind::Interface) && self.pous[p].method_of.is_none()
+            {
+                self.types.add_interface(PouId(p as u32));
+            }
             let sups: Vec<PouId> = self.pous[p]
                 .base
                 .iter()
@@ -240,9 +244,13 @@ impl<'a> Sema<'a> {
 
     fn pou_kind_word(&self, q: PouId) -> &'static str {
         match self.pous[q.0 as usize].kind {
-            PouKind::Function => "function",
-            PouKind::Program => "program",
-            PouKind::FunctionBlock => self.class_word(q),
+            PouKind::Function => "a function",
+            PouKind::Program => "a program",
+            PouKind::FunctionBlock => match self.pous[q.0 as usize].class {
+                Some(ClassKind::Class) => "a class",
+                Some(ClassKind::Interface) => "an interface",
+                None => "a function block",
+            },
         }
     }
 

@@ -118,6 +118,8 @@ pub struct TypeTable {
     /// implements directly (docs/oop.md); an instance of it is one of
     /// theirs.
     supers: rustc_hash::FxHashMap<crate::PouId, Vec<crate::PouId>>,
+    /// The INTERFACEs (whose references are interface values).
+    interfaces: rustc_hash::FxHashSet<crate::PouId>,
 }
 
 /// How a value of one type can be stored in another.
@@ -145,6 +147,7 @@ impl TypeTable {
             strings: Default::default(),
             refs: Default::default(),
             supers: Default::default(),
+            interfaces: Default::default(),
         };
         t.add(TypeKind::Error, None, None);
         t.add(TypeKind::Void, None, None);
@@ -274,6 +277,11 @@ impl TypeTable {
     /// Records that `p` extends or implements `sup` directly.
     pub fn add_super(&mut self, p: crate::PouId, sup: crate::PouId) {
         self.supers.entry(p).or_default().push(sup);
+    }
+
+    /// Records that `p` is an INTERFACE.
+    pub fn add_interface(&mut self, p: crate::PouId) {
+        self.interfaces.insert(p);
     }
 
     /// The POUs `p` extends or implements directly.
@@ -407,6 +415,10 @@ impl TypeTable {
             TypeKind::Struct { .. } => "STRUCT".into(),
             TypeKind::Fb(_) | TypeKind::Program(_) => "function block".into(),
             TypeKind::Ref(TypeId::VOID) => "NULL".into(),
+            // (An interface value is written as its interface.)
+            TypeKind::Ref(t) if matches!(self.kind(*t), TypeKind::Fb(p) if self.interfaces.contains(p)) => {
+                self.display(*t, interner)
+            }
             TypeKind::Ref(t) => format!("REF_TO {}", self.display(*t, interner)),
         }
     }

@@ -3736,6 +3736,39 @@ END_PROGRAM
 ",
     ),
     (
+        Code::E1327,
+        r"FUNCTION_BLOCK Motor
+END_FUNCTION_BLOCK
+
+PROGRAM Main
+VAR
+    n : INT;
+    m : Motor;
+    rn : REF_TO INT;
+    rm : REF_TO Motor;
+END_VAR
+    rn := REF(n);
+    rm ?= rn; // E1327
+    m();
+END_PROGRAM
+",
+        r"FUNCTION_BLOCK Motor
+END_FUNCTION_BLOCK
+
+PROGRAM Main
+VAR
+    n : INT;
+    m : Motor;
+    rn : REF_TO INT;
+    rm : REF_TO Motor;
+END_VAR
+    rn := REF(n);
+    rm := REF(m);
+    m();
+END_PROGRAM
+",
+    ),
+    (
         Code::W1317,
         r"FUNCTION_BLOCK Base
 METHOD Reset

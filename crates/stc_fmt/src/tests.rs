@@ -169,7 +169,7 @@ fn methods_are_blocks_of_their_function_block_and_references_keep_their_caret() 
 #[test]
 fn classes_and_interfaces_are_blocks() {
     check(
-        "INTERFACE I EXTENDS J METHOD m : INT END_METHOD END_INTERFACE\nCLASS C EXTENDS B IMPLEMENTS I VAR x : INT; END_VAR\nMETHOD PUBLIC m : INT m := x; END_METHOD END_CLASS",
+        "INTERFACE I EXTENDS J\nMETHOD m : INT\nEND_METHOD END_INTERFACE\nCLASS C EXTENDS B IMPLEMENTS I VAR x : INT; END_VAR\nMETHOD PUBLIC m : INT\nm := x; END_METHOD END_CLASS",
         "INTERFACE I EXTENDS J\n    METHOD m : INT\n    END_METHOD\nEND_INTERFACE\n\nCLASS C EXTENDS B IMPLEMENTS I\n    VAR\n        x : INT;\n    END_VAR\n    METHOD PUBLIC m : INT\n        m := x;\n    END_METHOD\nEND_CLASS\n",
     );
 }

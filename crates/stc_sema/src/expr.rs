@@ -1865,9 +1865,7 @@ impl<'a> Sema<'a> {
             );
             return Some(false);
         }
-        let Some(p) = self.body.current else {
-            return None;
-        };
+        let p = self.body.current?;
         if self.ref_of_checked(e, from, Scope::Pou(p)) == TypeId::ERROR {
             return Some(false);
         }

@@ -1397,6 +1397,22 @@ impl<'a> Sema<'a> {
                 TypeId::ERROR
             };
         }
+        // `itf = inst`: whether the interface value refers to the instance.
+        if matches!(op, BinaryOp::Eq | BinaryOp::Ne) {
+            for (itf_t, e, et) in [(lt, r, rt), (rt, l, lt)] {
+                if self.interface_of(itf_t).is_some()
+                    && matches!(self.types.kind(et), TypeKind::Fb(_))
+                {
+                    if self
+                        .instance_as_interface(e, et, itf_t, "an interface value")
+                        .is_none()
+                    {
+                        self.instance_as_value(e, et);
+                    }
+                    return self.types.elem(ElemType::Bool);
+                }
+            }
+        }
         if self.instance_as_value(l, lt) || self.instance_as_value(r, rt) {
             return if cmp {
                 self.types.elem(ElemType::Bool)

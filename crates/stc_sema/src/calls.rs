@@ -353,7 +353,38 @@ impl<'a> Sema<'a> {
         if let Some(info) = self.calls.get_mut(&e) {
             info.target = CallTarget::Method { method: m, this };
         }
+        // A call may run any override of the method (not one through
+        // SUPER^, which is static): for the recursion check.
+        let through_super = this.is_some_and(|x| self.is_super_deref(x));
+        if let (Scope::Pou(p), false) = (scope, through_super) {
+            let name = self.pous[m.0 as usize].name;
+            for d in 0..self.pous.len() {
+                let d = PouId(d as u32);
+                if d != fb
+                    && self.pous[d.0 as usize].method_of.is_none()
+                    && self.types.is_subtype(d, fb)
+                {
+                    if let Some(o) = self.find_method(d, name).filter(|&o| o != m) {
+                        self.call_edges.push((p, o, name_span));
+                    }
+                }
+            }
+        }
         t
+    }
+
+    /// Whether `e` is `SUPER^` (in parentheses or not).
+    fn is_super_deref(&self, mut e: ExprId) -> bool {
+        while let ExprKind::Paren(i) = &self.ast.expr(e).kind {
+            e = *i;
+        }
+        let ExprKind::Deref(mut r) = self.ast.expr(e).kind else {
+            return false;
+        };
+        while let ExprKind::Paren(i) = &self.ast.expr(r).kind {
+            r = *i;
+        }
+        matches!(self.resolutions.get(&r), Some(crate::Res::Super))
     }
 
     fn function_call(

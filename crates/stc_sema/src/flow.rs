@@ -645,21 +645,6 @@ impl<'a> Sema<'a> {
         for &(a, b, s) in &self.call_edges {
             edges.entry(a).or_default().push((b, s));
         }
-        // A call of a method may run any override of it (or any
-        // implementation of an interface's method).
-        for (pi, pou) in self.pous.iter().enumerate() {
-            let Some((owner, _)) = pou.method_of else {
-                continue;
-            };
-            for &sup in self.types.supers(owner) {
-                if let Some(bm) = self.find_method(sup, pou.name) {
-                    edges
-                        .entry(bm)
-                        .or_default()
-                        .push((PouId(pi as u32), pou.name_span));
-                }
-            }
-        }
         for (pi, pou) in self.pous.iter().enumerate() {
             for v in &pou.vars {
                 if v.section == Section::External || v.section == Section::InOut {

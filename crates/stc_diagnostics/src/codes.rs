@@ -563,6 +563,61 @@ no body): it is meant to be extended, never instantiated. A variable,
 global or array element of its type is refused; a VAR_IN_OUT or a
 reference (`REF_TO`) of its type is allowed, since it only refers to an
 instance. Instantiate a function block that is not ABSTRACT.";
+    E1317 Error "EXTENDS or IMPLEMENTS names the wrong kind of POU"
+"A FUNCTION_BLOCK EXTENDS a FUNCTION_BLOCK and a CLASS a CLASS; IMPLEMENTS
+and the EXTENDS of an INTERFACE name INTERFACEs. The name here is unknown,
+or a function, program, data type or POU of another kind; an INTERFACE
+implements nothing (it EXTENDS its base interfaces). Name a POU of the right
+kind.";
+    E1318 Error "not allowed in a CLASS or INTERFACE"
+"A CLASS has variables (VAR, VAR_TEMP...) and METHODs but no body and no
+VAR_INPUT, VAR_OUTPUT or VAR_IN_OUT (its methods have parameters). An
+INTERFACE has only METHOD prototypes: parameters and a result type, no
+local variables and no body. Move the statements into a METHOD, or declare
+a FUNCTION_BLOCK.";
+    E1319 Error "cycle of EXTENDS"
+"A function block, class or interface extends itself, directly or through
+its bases, so its variables and methods would be its own. Remove the
+EXTENDS that closes the cycle.";
+    E1320 Error "extending a FINAL block"
+"A FUNCTION_BLOCK or CLASS declared FINAL cannot be extended. Remove FINAL
+from the base, or use an instance of it as a variable of the new block.";
+    E1321 Error "overriding a FINAL method"
+"A METHOD declared FINAL in a base cannot be overridden in a derived block.
+Give the method of the derived block another name, or remove FINAL from the
+base's method.";
+    E1322 Error "override with another signature"
+"A method of a derived block with the name of a method of its base overrides
+it, and must have exactly its signature: the same parameters (section, name,
+type, in the same order) and the same result type, so a call through the
+base calls it correctly. Make the signatures the same, or rename the
+method.";
+    E1323 Error "ABSTRACT method not implemented"
+"A FUNCTION_BLOCK or CLASS that is not ABSTRACT can be instantiated, so every
+method it inherits must have a body: an ABSTRACT method of a base needs an
+overriding method here. Implement the method, or declare the block
+ABSTRACT.";
+    E1324 Error "interface method not implemented"
+"A block that IMPLEMENTS an INTERFACE (directly, through a base, or through
+the interfaces the interface extends) must have every method of the
+interface, since a call through an interface value may call any of them.
+Add the method, or declare the block ABSTRACT.";
+    E1325 Error "interface method with another signature"
+"The method implementing a method of an INTERFACE must have exactly its
+signature: the same parameters (section, name, type, in the same order) and
+the same result type. Make the signatures the same.";
+    E1326 Error "instance does not implement the interface"
+"An interface value refers to an instance of a block that implements the
+interface. The instance here is of a type that does not implement it (nor
+do its bases). Add the interface to the block's IMPLEMENTS, or use an
+interface it implements.";
+
+    E1327 Error "assignment attempt needs references or interfaces"
+"`a ?= b` assigns `b` to `a` when the instance `b` refers to is of `a`'s
+type, else NULL. Both sides must be interface values or references to
+function blocks or classes (the target a variable), and the instance could
+fit: one type extends or implements the other, or one is an interface.
+Use `:=` for other values.";
 
     W0101 Warning "result depends on evaluation order"
 "A variable is written by an output parameter (`=>`) or VAR_IN_OUT of one call
@@ -662,6 +717,10 @@ steps active together (they are on alternative branches, for example), so
 the transition never fires. Converge alternative branches with one
 transition from each step, and join with `FROM (a, b)` only the branches
 one transition started together (`TO (a, b)`).";
+    W1317 Warning "override without OVERRIDE"
+"A method of a derived block has the name and signature of a method of its
+base, so it overrides it (a call through the base runs this one), but it is
+not declared OVERRIDE. Write `METHOD OVERRIDE name` to say so.";
 }
 
 #[cfg(test)]

@@ -335,6 +335,18 @@ impl<'a> Layout<'a> {
                     forced = Some(self.body_level());
                 }
             }
+            TokenKind::Ident if top_level && self.opens_class(i) => {
+                forced = Some(self.body_level());
+                blank |= self.prev_tok.is_some() && !self.prev_was_trivia;
+                push = Some(Block::Pou);
+            }
+            TokenKind::Ident if self.closes_class(i) => {
+                if let Some(pos) = self.stack.iter().rposition(|f| f.block == Block::Pou) {
+                    let f = self.stack[pos];
+                    self.stack.truncate(pos);
+                    forced = Some(f.indent);
+                }
+            }
             TokenKind::Kw(k) if closes(k).is_some() => {
                 let b = closes(k);
                 if let Some(pos) = self.stack.iter().rposition(|f| Some(f.block) == b) {
@@ -521,6 +533,7 @@ impl<'a> Layout<'a> {
             TokenKind::Ident if self.src(i).eq_ignore_ascii_case("END_METHOD") => {
                 self.stmt_end(Pending::BreakUnlessSemi)
             }
+            TokenKind::Ident if self.closes_class(i) => self.stmt_end(Pending::BreakUnlessSemi),
             _ => {}
         }
         self.prev_tok = Some(kind);
@@ -594,6 +607,25 @@ impl<'a> Layout<'a> {
                 .toks
                 .get(i + 1)
                 .is_some_and(|t| t.kind == TokenKind::Ident)
+    }
+
+    /// `CLASS` or `INTERFACE` opening a POU (3rd edition; identifiers),
+    /// followed by its name.
+    fn opens_class(&self, i: usize) -> bool {
+        (self.src(i).eq_ignore_ascii_case("CLASS") || self.src(i).eq_ignore_ascii_case("INTERFACE"))
+            && self
+                .toks
+                .get(i + 1)
+                .is_some_and(|t| t.kind == TokenKind::Ident)
+            // (Not the INTERFACE part of a logi.CAD UNIT: `USES ...`.)
+            && !self.src(i + 1).eq_ignore_ascii_case("USES")
+    }
+
+    /// `END_CLASS` or `END_INTERFACE` closing an open POU.
+    fn closes_class(&self, i: usize) -> bool {
+        (self.src(i).eq_ignore_ascii_case("END_CLASS")
+            || self.src(i).eq_ignore_ascii_case("END_INTERFACE"))
+            && self.stack.iter().any(|f| f.block == Block::Pou)
     }
 
     /// `END_METHOD` closing an open method.

@@ -165,3 +165,11 @@ fn methods_are_blocks_of_their_function_block_and_references_keep_their_caret() 
         "FUNCTION_BLOCK f\n    VAR\n        x : INT;\n        r : REF_TO INT;\n    END_VAR\n    METHOD PUBLIC m : INT\n        VAR_INPUT\n            n : INT;\n        END_VAR\n        m := n + THIS^.x;\n        r^ := n;\n    END_METHOD\n    x := m(1);\nEND_FUNCTION_BLOCK\n",
     );
 }
+
+#[test]
+fn classes_and_interfaces_are_blocks() {
+    check(
+        "INTERFACE I EXTENDS J\nMETHOD m : INT\nEND_METHOD END_INTERFACE\nCLASS C EXTENDS B IMPLEMENTS I VAR x : INT; END_VAR\nMETHOD PUBLIC m : INT\nm := x; END_METHOD END_CLASS",
+        "INTERFACE I EXTENDS J\n    METHOD m : INT\n    END_METHOD\nEND_INTERFACE\n\nCLASS C EXTENDS B IMPLEMENTS I\n    VAR\n        x : INT;\n    END_VAR\n    METHOD PUBLIC m : INT\n        m := x;\n    END_METHOD\nEND_CLASS\n",
+    );
+}

@@ -1,6 +1,7 @@
 //! Lowering: the analysed syntax tree to the IR.
 
 mod il;
+mod oop;
 
 use stc_diagnostics::{SourceMap, Span};
 use stc_sema::idx::IdVec;
@@ -82,7 +83,12 @@ pub fn lower(ast: &Ast, analysis: Analysis, interner: &Interner, sources: &Sourc
         .enumerate()
         .map(|(i, p)| {
             // (A METHOD's hidden THIS is bound by every call.)
+            // (A base's are also its derived blocks' hidden variables.)
             p.this.is_some()
+                || analysis
+                    .pous
+                    .iter()
+                    .any(|d| d.base == Some(PouId(i as u32)))
                 || p.vars.iter().enumerate().any(|(v, var)| {
                     var.implicit
                         && analysis
@@ -177,6 +183,14 @@ impl<'a> Lowerer<'a> {
                 span: v.span,
             })
             .collect();
+        for (i, v) in self.vars.iter_mut().enumerate() {
+            let id = VarId(i as u32);
+            if Some(id) == def.tag {
+                v.hidden = Some("tag");
+            } else if def.hidden_var(id) {
+                v.hidden = Some("inherited");
+            }
+        }
         let mut body = Vec::new();
         let (line, col) = self.line_col(src.span);
         // ENO is TRUE at the start of every call.
@@ -335,6 +349,11 @@ impl<'a> Lowerer<'a> {
         let at = |l: &Self, k| l.stmt_at(s.span, k);
         match &s.kind {
             SK::Empty | SK::Error | SK::Unsupported(_) => {}
+            SK::AssignAttempt { target, value } => {
+                let mut stmts = self.assignment_attempt(*target, *value, s.span);
+                out.append(&mut self.pending);
+                out.append(&mut stmts);
+            }
             SK::Assign { target, value } => {
                 let place = self.place(*target);
                 let mut v = self.expr(*value);
@@ -702,7 +721,8 @@ impl<'a> Lowerer<'a> {
                     return Some(StmtKind::Eval(self.expr(e)));
                 };
                 let instance = self.place(*callee);
-                let (inputs, inouts, outputs) = self.bind(&info.args);
+                let (inputs, mut inouts, outputs) = self.bind(&info.args);
+                self.fix_inouts(*fb, &mut inouts);
                 Some(StmtKind::CallFb {
                     instance,
                     fb: *fb,
@@ -710,6 +730,14 @@ impl<'a> Lowerer<'a> {
                     inouts,
                     outputs,
                 })
+            }
+            CallTarget::Method { method, this } => {
+                let ty = self.a.expr_type(e);
+                match self.method_call(e, info, *method, *this, ty) {
+                    Ok(kind) => Some(StmtKind::Eval(Expr { kind, ty })),
+                    // (Its value, if any, is not used.)
+                    Err(_) => None,
+                }
             }
             _ => Some(StmtKind::Eval(self.expr(e))),
         }
@@ -773,7 +801,8 @@ impl<'a> Lowerer<'a> {
             CallTarget::Function(q) | CallTarget::FbInstance(q) => {
                 let q = *q;
                 let def = self.a.pou(q);
-                let (mut inputs, inouts, mut outputs) = self.bind(&info.args);
+                let (mut inputs, mut inouts, mut outputs) = self.bind(&info.args);
+                self.fix_inouts(q, &mut inouts);
                 if let Some(en) = self.control_var(q, def.en) {
                     inputs.push((en, konst_bool(true)));
                 }
@@ -1100,6 +1129,16 @@ impl<'a> Lowerer<'a> {
         };
         let base = self.locate_fault(e, base);
         match self.a.coercions.get(&e) {
+            // An instance as an interface value: the reference to it.
+            Some(&t)
+                if self.a.types.ref_target(t).is_some()
+                    && matches!(self.a.types.kind(ty), TypeKind::Fb(_)) =>
+            {
+                Expr {
+                    kind: ExprKind::Ref(self.place(e)),
+                    ty: t,
+                }
+            }
             // References of the same target type (NULL's type to any):
             // the same value.
             Some(&t) if self.a.types.ref_target(t).is_some() => Expr { ty: t, ..base },
@@ -1198,7 +1237,8 @@ impl<'a> Lowerer<'a> {
                     ExprKind::Const(Value::Int(v))
                 }
                 None if self.a.types.ref_target(ty) == Some(TypeId::VOID) => ExprKind::Null,
-                Some(Res::This) => ExprKind::Ref(self.this_place()),
+                // (`SUPER`: the same reference, of the base's type.)
+                Some(Res::This | Res::Super) => ExprKind::Ref(self.this_place()),
                 _ => ExprKind::Load(self.place(e)),
             },
             AK::IlCr => ExprKind::Load(self.cr_place(ty)),
@@ -1225,7 +1265,8 @@ impl<'a> Lowerer<'a> {
         }
         let kind = match &info.target {
             CallTarget::Function(f) => {
-                let (inputs, inouts, outputs) = self.bind(&info.args);
+                let (inputs, mut inouts, outputs) = self.bind(&info.args);
+                self.fix_inouts(*f, &mut inouts);
                 ExprKind::CallFn {
                     func: *f,
                     inputs,
@@ -1235,19 +1276,14 @@ impl<'a> Lowerer<'a> {
             }
             CallTarget::CurTime => ExprKind::CurTime,
             CallTarget::Method { method, this } => {
-                let (inputs, mut inouts, outputs) = self.bind(&info.args);
-                let target = match this {
-                    Some(x) => self.place(*x),
-                    None => self.this_place(),
-                };
-                if let Some(tv) = self.a.pou(*method).this {
-                    inouts.push((tv, target));
-                }
-                ExprKind::CallFn {
-                    func: *method,
-                    inputs,
-                    inouts,
-                    outputs,
+                match self.method_call(e, info, *method, *this, ty) {
+                    Ok(kind) => kind,
+                    Err(value) => {
+                        return value.unwrap_or(Expr {
+                            kind: ExprKind::Const(Value::Int(0)),
+                            ty,
+                        })
+                    }
                 }
             }
             CallTarget::Ref => match info.args.first().map(|a| &a.kind) {

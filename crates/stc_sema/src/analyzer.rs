@@ -74,6 +74,8 @@ pub(crate) struct Body {
     /// A chart error left part of the body out of its meaning (an unknown
     /// step, an undefined action): which variables it uses is not known.
     pub partial: bool,
+    /// The POU whose body is being checked.
+    pub current: Option<PouId>,
 }
 
 pub(crate) struct Sema<'a> {
@@ -198,6 +200,7 @@ impl<'a> Sema<'a> {
 
     pub fn run(mut self) -> Analysis {
         self.collect();
+        self.link_classes();
         for i in 0..self.type_decls.len() {
             self.resolve_type_decl(i);
         }
@@ -208,6 +211,7 @@ impl<'a> Sema<'a> {
             self.resolve_global(GlobalId(g as u32));
         }
         self.collect_configs();
+        self.check_classes();
         self.global_names = self.globals.iter().map(|g| g.var.name).collect();
         // A function block's methods before its own body, so that what
         // they use of the instance is known to its warnings.
@@ -348,7 +352,7 @@ impl<'a> Sema<'a> {
         // (In a METHOD: what its function block may inherit.)
         let p = self.pous[p.0 as usize].method_of.map_or(p, |(fb, _)| fb);
         self.pou_ast(p)
-            .is_some_and(|a| a.extends.is_some() || self.is_skipped_member(p, name))
+            .is_some_and(|_| self.is_skipped_member(p, name))
     }
 
     /// Whether a POU declared an ACTION, METHOD or PROPERTY of this name,

@@ -211,7 +211,12 @@ impl<'a> Sema<'a> {
                 self.loose_args(args, scope);
                 return TypeId::ERROR;
             }
-            if let TypeKind::Fb(fb) = *self.types.kind(bt) {
+            // (An interface value: its instance's method.)
+            let receiver = self
+                .interface_of(bt)
+                .map(|i| self.pou_type(i))
+                .unwrap_or(bt);
+            if let TypeKind::Fb(fb) = *self.types.kind(receiver) {
                 if let Some(m) = self.find_method(fb, member.sym) {
                     return self.method_call(e, m, Some(*base), args, scope, span, member.span);
                 }
@@ -254,6 +259,19 @@ impl<'a> Sema<'a> {
             self.loose_args(args, scope);
             return TypeId::ERROR;
         };
+        if self.pous[fb.0 as usize].class.is_some() {
+            let msg = format!(
+                "an instance of the CLASS `{}` has no body to call",
+                self.tname(t)
+            );
+            self.emit(
+                Diagnostic::new(Code::E0405, callee_span, msg)
+                    .with_label("a CLASS instance")
+                    .with_help("call one of its methods: `inst.m()`"),
+            );
+            self.loose_args(args, scope);
+            return TypeId::ERROR;
+        }
         if let Scope::Pou(p) = scope {
             if self.pous[p.0 as usize].kind == PouKind::Function {
                 // A local instance is already E0501 at its declaration.
@@ -309,11 +327,14 @@ impl<'a> Sema<'a> {
         name_span: Span,
     ) -> TypeId {
         let (fb, _) = self.pous[m.0 as usize].method_of.unwrap_or((m, 0));
+        let access = self.pous[m.0 as usize].access;
         let private = matches!(
-            self.pous[m.0 as usize].access,
+            access,
             Some(stc_syntax::ast::Access::Private | stc_syntax::ast::Access::Protected)
         );
-        let inside = matches!(scope, Scope::Pou(p) if self.own_instance(p) == Some(fb));
+        // PROTECTED: also from the blocks derived from it.
+        let protected = access == Some(stc_syntax::ast::Access::Protected);
+        let inside = matches!(scope, Scope::Pou(p) if self.own_instance(p).is_some_and(|o| o == fb || protected && self.types.is_subtype(o, fb)));
         if private && !inside {
             let shown = self.sym_name(self.pous[m.0 as usize].name);
             let decl = self.pous[m.0 as usize].name_span;
@@ -335,7 +356,38 @@ impl<'a> Sema<'a> {
         if let Some(info) = self.calls.get_mut(&e) {
             info.target = CallTarget::Method { method: m, this };
         }
+        // A call may run any override of the method (not one through
+        // SUPER^, which is static): for the recursion check.
+        let through_super = this.is_some_and(|x| self.is_super_deref(x));
+        if let (Scope::Pou(p), false) = (scope, through_super) {
+            let name = self.pous[m.0 as usize].name;
+            for d in 0..self.pous.len() {
+                let d = PouId(d as u32);
+                if d != fb
+                    && self.pous[d.0 as usize].method_of.is_none()
+                    && self.types.is_subtype(d, fb)
+                {
+                    if let Some(o) = self.find_method(d, name).filter(|&o| o != m) {
+                        self.call_edges.push((p, o, name_span));
+                    }
+                }
+            }
+        }
         t
+    }
+
+    /// Whether `e` is `SUPER^` (in parentheses or not).
+    fn is_super_deref(&self, mut e: ExprId) -> bool {
+        while let ExprKind::Paren(i) = &self.ast.expr(e).kind {
+            e = *i;
+        }
+        let ExprKind::Deref(mut r) = self.ast.expr(e).kind else {
+            return false;
+        };
+        while let ExprKind::Paren(i) = &self.ast.expr(r).kind {
+            r = *i;
+        }
+        matches!(self.resolutions.get(&r), Some(crate::Res::Super))
     }
 
     fn function_call(

@@ -170,7 +170,7 @@ impl<'a> Sema<'a> {
                 .with_secondary(first, "the variable"),
             );
         }
-        if m.is_override {
+        if m.is_override && self.pou_ast(fb).is_some_and(|a| a.extends.is_none()) {
             self.emit(
                 Diagnostic::new(
                     Code::E1309,
@@ -226,6 +226,11 @@ impl<'a> Sema<'a> {
             this: None,
             access: None,
             methods: Vec::new(),
+            class: if method_of.is_none() { p.class } else { None },
+            base: None,
+            interfaces: Vec::new(),
+            inherited: 0,
+            tag: None,
         };
         let mut src = Vec::new();
         if p.kind == PouKind::Function && p.return_type.is_some() {
@@ -792,6 +797,14 @@ impl<'a> Sema<'a> {
                     );
                     (TypeId::ERROR, None)
                 }
+                // An interface value: a reference to an instance of a
+                // block implementing it (NULL until assigned).
+                _ if self.pous[p.0 as usize].class
+                    == Some(stc_syntax::ast::ClassKind::Interface) =>
+                {
+                    let t = self.pou_type(p);
+                    (self.types.ref_to(t), None)
+                }
                 _ => (self.pou_type(p), None),
             },
             // An INTERFACE or another construct already reported.
@@ -1021,6 +1034,20 @@ impl<'a> Sema<'a> {
                 return;
             }
             State::Todo => {}
+        }
+        if let Some(b) = self.pous[pi]
+            .base
+            .filter(|_| (vi as u32) < self.pous[pi].inherited)
+        {
+            // Inherited: the base's type and initial value.
+            self.pou_var_state[pi][vi] = State::InProgress;
+            self.ensure_var(b, v);
+            let bv = self.pous[b.0 as usize].vars[vi].clone();
+            let var = &mut self.pous[pi].vars[vi];
+            var.ty = bv.ty;
+            var.init = bv.init;
+            self.pou_var_state[pi][vi] = State::Done;
+            return;
         }
         if self.pous[pi].vars[vi].implicit {
             // EN and ENO: BOOL, TRUE, nothing to resolve.

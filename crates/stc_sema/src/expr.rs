@@ -172,12 +172,30 @@ impl<'a> Sema<'a> {
     }
 
     /// The METHOD `name` of function block `fb`.
+    /// (Its own, else its base's, else its interfaces': the
+    /// implementation an instance of exactly `fb` runs.)
     pub(crate) fn find_method(&self, fb: PouId, name: stc_syntax::Symbol) -> Option<PouId> {
-        self.pous[fb.0 as usize]
-            .methods
-            .iter()
-            .copied()
-            .find(|m| self.pous[m.0 as usize].name == name)
+        let mut stack = vec![fb];
+        let mut seen = Vec::new();
+        while let Some(p) = stack.pop() {
+            if seen.contains(&p) {
+                continue;
+            }
+            seen.push(p);
+            let def = &self.pous[p.0 as usize];
+            if let Some(m) = def
+                .methods
+                .iter()
+                .copied()
+                .find(|m| self.pous[m.0 as usize].name == name)
+            {
+                return Some(m);
+            }
+            // (Last pushed, first searched: the base before the interfaces.)
+            stack.extend(def.interfaces.iter().rev().copied());
+            stack.extend(def.base);
+        }
+        None
     }
 
     /// A name in POU `p` that is not one of its own variables: `THIS`,
@@ -202,6 +220,14 @@ impl<'a> Sema<'a> {
             return Some(self.types.ref_to(t));
         }
         if key == "SUPER" {
+            let base = self.own_fb(p).and_then(|fb| self.pous[fb.0 as usize].base);
+            if let Some(b) = base {
+                // `SUPER^`: this instance as its base (its methods called
+                // statically, its body by `SUPER^()`).
+                self.resolutions.insert(e, Res::Super);
+                let t = self.pou_type(b);
+                return Some(self.types.ref_to(t));
+            }
             self.emit(
                 Diagnostic::new(
                     Code::E1313,
@@ -262,6 +288,11 @@ impl<'a> Sema<'a> {
         if t == TypeId::ERROR {
             return TypeId::ERROR;
         }
+        self.ref_of_checked(arg, t, scope)
+    }
+
+    /// [`Sema::ref_of`] of an expression already checked, of type `t`.
+    pub(crate) fn ref_of_checked(&mut self, arg: ExprId, t: TypeId, scope: Scope) -> TypeId {
         let aspan = self.ast.expr(arg).span;
         let not_var = |s: &mut Self, why: &str| {
             s.emit(
@@ -1470,6 +1501,22 @@ impl<'a> Sema<'a> {
                 TypeId::ERROR
             };
         }
+        // `itf = inst`: whether the interface value refers to the instance.
+        if matches!(op, BinaryOp::Eq | BinaryOp::Ne) {
+            for (itf_t, e, et) in [(lt, r, rt), (rt, l, lt)] {
+                if self.interface_of(itf_t).is_some()
+                    && matches!(self.types.kind(et), TypeKind::Fb(_))
+                {
+                    if self
+                        .instance_as_interface(e, et, itf_t, "an interface value")
+                        .is_none()
+                    {
+                        self.instance_as_value(e, et);
+                    }
+                    return self.types.elem(ElemType::Bool);
+                }
+            }
+        }
         if self.instance_as_value(l, lt) || self.instance_as_value(r, rt) {
             return if cmp {
                 self.types.elem(ElemType::Bool)
@@ -1857,6 +1904,9 @@ impl<'a> Sema<'a> {
         what: &str,
     ) -> bool {
         let span = self.ast.expr(e).span;
+        if let Some(ok) = self.instance_as_interface(e, from, to, what) {
+            return ok;
+        }
         if from != to && self.instance_as_value(e, from) {
             return false;
         }
@@ -1986,6 +2036,57 @@ impl<'a> Sema<'a> {
     }
 
     /// E0409: a function block instance where a value is needed.
+    /// Whether `to` is an interface type (a reference to an INTERFACE),
+    /// and which interface.
+    pub(crate) fn interface_of(&self, to: TypeId) -> Option<PouId> {
+        let target = self.types.ref_target(to)?;
+        match *self.types.kind(target) {
+            TypeKind::Fb(i)
+                if self.pous[i.0 as usize].class == Some(stc_syntax::ast::ClassKind::Interface) =>
+            {
+                Some(i)
+            }
+            _ => None,
+        }
+    }
+
+    /// An instance where an interface value is expected (`itf := inst`):
+    /// the reference to it, when its type implements the interface (E1326)
+    /// and it lives as long as the program (E1303). `None`: not that case.
+    fn instance_as_interface(
+        &mut self,
+        e: ExprId,
+        from: TypeId,
+        to: TypeId,
+        what: &str,
+    ) -> Option<bool> {
+        let i = self.interface_of(to)?;
+        let TypeKind::Fb(d) = *self.types.kind(from) else {
+            return None;
+        };
+        if !self.types.is_subtype(d, i) {
+            let it = self.pou_type(i);
+            let (f, t) = (self.tname(from), self.tname(it));
+            let decl = self.pous[d.0 as usize].name_span;
+            self.emit(
+                Diagnostic::new(
+                    Code::E1326,
+                    self.ast.expr(e).span,
+                    format!("{what} of interface {t} cannot refer to an instance of {f}"),
+                )
+                .with_label(format!("{f} does not implement {t}"))
+                .with_secondary(decl, format!("{f} declared here")),
+            );
+            return Some(false);
+        }
+        let p = self.body.current?;
+        if self.ref_of_checked(e, from, Scope::Pou(p)) == TypeId::ERROR {
+            return Some(false);
+        }
+        self.coercions.insert(e, to);
+        Some(true)
+    }
+
     pub(crate) fn instance_as_value(&mut self, e: ExprId, t: TypeId) -> bool {
         if !matches!(self.types.kind(t), TypeKind::Fb(_)) {
             return false;

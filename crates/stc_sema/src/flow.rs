@@ -62,6 +62,11 @@ impl<'a> Sema<'a> {
         if self.pous[p.0 as usize].is_std {
             return;
         }
+        // An INTERFACE and its prototypes have no body: nothing is used.
+        let owner = self.own_fb(p).unwrap_or(p);
+        if self.pous[owner.0 as usize].class == Some(stc_syntax::ast::ClassKind::Interface) {
+            return;
+        }
         // A part reported as not supported (an IL or SFC body, a METHOD...)
         // may use any variable and assign the result: nothing is known.
         let partial = pou.partial || self.body.partial;
@@ -69,11 +74,17 @@ impl<'a> Sema<'a> {
             [p.0 as usize]
             .vars
             .iter()
-            .filter(|v| !v.implicit)
-            .map(|v| {
+            .enumerate()
+            .filter(|(_, v)| !v.implicit)
+            .map(|(i, v)| {
                 // A declaration whose type was already an error (an
-                // unsupported or unknown type) is not reported again.
-                let quiet = v.location.is_some() || v.ty == crate::TypeId::ERROR;
+                // unsupported or unknown type) is not reported again; nor
+                // the tag and what is inherited (the base's business).
+                let def = &self.pous[p.0 as usize];
+                let quiet = v.location.is_some()
+                    || v.ty == crate::TypeId::ERROR
+                    || (i as u32) < def.inherited
+                    || def.tag == Some(VarId(i as u32));
                 (v.name, v.span, v.section, quiet, v.ty)
             })
             .collect();
@@ -140,8 +151,11 @@ impl<'a> Sema<'a> {
         // (An ABSTRACT method has no body to assign its result.)
         let abstract_method = self.pous[p.0 as usize]
             .method_of
-            .and_then(|(fb, k)| self.pou_ast(fb)?.methods.get(k))
-            .is_some_and(|m| m.is_abstract);
+            .and_then(|(fb, k)| {
+                let owner = self.pou_ast(fb)?;
+                Some(owner.is_interface() || owner.methods.get(k)?.is_abstract)
+            })
+            .unwrap_or(false);
         let result_known = self.pous[p.0 as usize]
             .return_type
             .is_some_and(|t| t != crate::TypeId::ERROR)

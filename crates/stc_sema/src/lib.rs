@@ -16,6 +16,7 @@
 
 mod analyzer;
 mod calls;
+mod classes;
 mod config;
 mod decls;
 mod expr;
@@ -135,6 +136,35 @@ pub struct PouDef {
     pub access: Option<stc_syntax::ast::Access>,
     /// For a FUNCTION_BLOCK: its methods, in declaration order.
     pub methods: Vec<PouId>,
+    /// What the POU was declared as when not FUNCTION_BLOCK (a CLASS, an
+    /// INTERFACE: docs/oop.md).
+    pub class: Option<stc_syntax::ast::ClassKind>,
+    /// The function block or class it EXTENDS.
+    pub base: Option<PouId>,
+    /// The interfaces it IMPLEMENTS (of an INTERFACE: those it EXTENDS).
+    pub interfaces: Vec<PouId>,
+    /// The first `inherited` variables are its base's, in the base's order
+    /// (so a base instance is a prefix of a derived one): the base's hidden
+    /// ones too (its tag, its EN and ENO), which are named by no name here.
+    pub inherited: u32,
+    /// The hidden type tag (variable 0, a UDINT set at initialisation to
+    /// [`PouDef::tag_value`]) of a block, class or interface that takes part
+    /// in inheritance or implements an interface: what dynamic dispatch
+    /// reads.
+    pub tag: Option<VarId>,
+}
+
+impl PouDef {
+    /// The value of the type tag of the POU `p`'s instances.
+    pub fn tag_value(p: PouId) -> u32 {
+        p.0 + 1
+    }
+
+    /// Whether variable `v` is one the user cannot name: an inherited copy
+    /// of a base's hidden variable, or the tag.
+    pub fn hidden_var(&self, v: VarId) -> bool {
+        Some(v) == self.tag || (v.0 < self.inherited && !self.var_index.values().any(|&x| x == v))
+    }
 }
 
 impl PouDef {
@@ -249,6 +279,8 @@ pub enum Res {
     /// `THIS`: the reference to the function block instance whose body
     /// or method runs.
     This,
+    /// `SUPER`: `THIS` as a reference to the base of its block.
+    Super,
 }
 
 /// A resolved call.

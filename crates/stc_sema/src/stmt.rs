@@ -15,7 +15,10 @@ use crate::{PouId, Res};
 impl<'a> Sema<'a> {
     pub(crate) fn check_body(&mut self, p: PouId, pou: &'a Pou) {
         self.resolve_pou(p);
-        self.body = Body::default();
+        self.body = Body {
+            current: Some(p),
+            ..Body::default()
+        };
         self.stmts(&pou.body, p);
         if let Some(il) = &pou.il {
             self.il_body(p, il);
@@ -65,6 +68,9 @@ impl<'a> Sema<'a> {
                 for &e in exprs {
                     self.check_expr(e, Some(TypeId::ERROR), scope);
                 }
+            }
+            StmtKind::AssignAttempt { target, value } => {
+                self.assign_attempt(*target, *value, p);
             }
             StmtKind::Assign { target, value } => {
                 let tt = self.check_lvalue(*target, scope, Write::Assign);

@@ -114,6 +114,12 @@ pub struct TypeTable {
     types: Vec<TypeInfo>,
     strings: rustc_hash::FxHashMap<(bool, u32), TypeId>,
     refs: rustc_hash::FxHashMap<TypeId, TypeId>,
+    /// Per function block, class or interface: the POUs it extends or
+    /// implements directly (docs/oop.md); an instance of it is one of
+    /// theirs.
+    supers: rustc_hash::FxHashMap<crate::PouId, Vec<crate::PouId>>,
+    /// The INTERFACEs (whose references are interface values).
+    interfaces: rustc_hash::FxHashSet<crate::PouId>,
 }
 
 /// How a value of one type can be stored in another.
@@ -140,6 +146,8 @@ impl TypeTable {
             types: Vec::new(),
             strings: Default::default(),
             refs: Default::default(),
+            supers: Default::default(),
+            interfaces: Default::default(),
         };
         t.add(TypeKind::Error, None, None);
         t.add(TypeKind::Void, None, None);
@@ -195,6 +203,11 @@ impl TypeTable {
         let r = self.add(TypeKind::Ref(t), None, None);
         self.refs.insert(t, r);
         r
+    }
+
+    /// The reference type to `t`, if the table has it.
+    pub fn find_ref(&self, t: TypeId) -> Option<TypeId> {
+        self.refs.get(&t).copied()
     }
 
     /// The target type of a reference type (VOID for `NULL`'s type).
@@ -261,8 +274,51 @@ impl TypeTable {
     }
 
     /// Can a value of type `from` be stored in `to`?
+    /// Records that `p` extends or implements `sup` directly.
+    pub fn add_super(&mut self, p: crate::PouId, sup: crate::PouId) {
+        self.supers.entry(p).or_default().push(sup);
+    }
+
+    /// Records that `p` is an INTERFACE.
+    pub fn add_interface(&mut self, p: crate::PouId) {
+        self.interfaces.insert(p);
+    }
+
+    /// The POUs `p` extends or implements directly.
+    pub fn supers(&self, p: crate::PouId) -> &[crate::PouId] {
+        self.supers.get(&p).map_or(&[], |v| v.as_slice())
+    }
+
+    /// Whether an instance of `a` is an instance of `b`: `a` is `b`, or
+    /// extends or implements it, directly or not.
+    pub fn is_subtype(&self, a: crate::PouId, b: crate::PouId) -> bool {
+        let mut stack = vec![a];
+        let mut seen = rustc_hash::FxHashSet::default();
+        while let Some(p) = stack.pop() {
+            if p == b {
+                return true;
+            }
+            if seen.insert(p) {
+                stack.extend_from_slice(self.supers(p));
+            }
+        }
+        false
+    }
+
+    /// Whether the function block type `from` is a proper subtype of `to`.
+    fn fb_subtype(&self, from: TypeId, to: TypeId) -> bool {
+        match (self.kind(from), self.kind(to)) {
+            (TypeKind::Fb(a), TypeKind::Fb(b)) => a != b && self.is_subtype(*a, *b),
+            _ => false,
+        }
+    }
+
     pub fn compat(&self, from: TypeId, to: TypeId, iec2: bool) -> Compat {
         if from == to || from == TypeId::ERROR || to == TypeId::ERROR {
+            return Compat::Same;
+        }
+        if self.fb_subtype(from, to) {
+            // A derived instance where its base is expected (a VAR_IN_OUT).
             return Compat::Same;
         }
         match (self.kind(from), self.kind(to)) {
@@ -283,6 +339,7 @@ impl TypeTable {
                     || *a == *b
                     || *a == TypeId::ERROR
                     || *b == TypeId::ERROR
+                    || self.fb_subtype(*a, *b)
                     || self.compat(*a, *b, false) == Compat::Same
                         && self.compat(*b, *a, false) == Compat::Same;
                 if same {
@@ -358,6 +415,10 @@ impl TypeTable {
             TypeKind::Struct { .. } => "STRUCT".into(),
             TypeKind::Fb(_) | TypeKind::Program(_) => "function block".into(),
             TypeKind::Ref(TypeId::VOID) => "NULL".into(),
+            // (An interface value is written as its interface.)
+            TypeKind::Ref(t) if matches!(self.kind(*t), TypeKind::Fb(p) if self.interfaces.contains(p)) => {
+                self.display(*t, interner)
+            }
             TypeKind::Ref(t) => format!("REF_TO {}", self.display(*t, interner)),
         }
     }

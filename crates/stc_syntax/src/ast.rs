@@ -269,6 +269,13 @@ pub enum StmtKind {
         target: ExprId,
         value: ExprId,
     },
+    /// `target ?= value` (assignment attempt, 3rd edition): the reference
+    /// or interface value `value` when the instance it refers to fits
+    /// `target`'s type, else NULL.
+    AssignAttempt {
+        target: ExprId,
+        value: ExprId,
+    },
     /// A call used as a statement (a function block or function call).
     Call(ExprId),
     If {
@@ -579,10 +586,15 @@ pub struct Pou {
     pub sfc: Option<SfcBody>,
     pub span: Span,
     pub pragmas: Vec<Span>,
-    /// The base named by `EXTENDS` (reported as not supported): members
-    /// the POU may inherit from it are unknown, so unknown names in its body
-    /// and unknown members of its instances are not reported.
+    /// The base named by `EXTENDS` of a FUNCTION_BLOCK or CLASS (for an
+    /// INTERFACE, its bases are in `implements`).
     pub extends: Option<Ident>,
+    /// The interfaces named by `IMPLEMENTS` (of an INTERFACE: those it
+    /// `EXTENDS`).
+    pub implements: Vec<Ident>,
+    /// A CLASS or an INTERFACE (3rd edition), kept as a POU of kind
+    /// FUNCTION_BLOCK (docs/oop.md): `None` for an ordinary POU.
+    pub class: Option<ClassKind>,
     /// ACTIONs, METHODs and PROPERTYs declared inside the POU, skipped after
     /// their E0030: a use of one of them (`inst.Reset()`) is not reported
     /// again.
@@ -598,6 +610,41 @@ pub struct Pou {
     pub is_abstract: bool,
     /// `FUNCTION_BLOCK FINAL`.
     pub is_final: bool,
+}
+
+/// What a POU of kind FUNCTION_BLOCK was declared as, when not
+/// `FUNCTION_BLOCK`.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum ClassKind {
+    /// `CLASS ... END_CLASS`: variables and methods, no body, no inputs or
+    /// outputs.
+    Class,
+    /// `INTERFACE ... END_INTERFACE`: method prototypes only.
+    Interface,
+}
+
+impl Pou {
+    /// The word that opens the POU (`FUNCTION_BLOCK`, `CLASS`...).
+    pub fn keyword(&self) -> &'static str {
+        match self.class {
+            Some(ClassKind::Class) => "CLASS",
+            Some(ClassKind::Interface) => "INTERFACE",
+            None => self.kind.keyword(),
+        }
+    }
+
+    /// The word that closes the POU.
+    pub fn end_keyword(&self) -> &'static str {
+        match self.class {
+            Some(ClassKind::Class) => "END_CLASS",
+            Some(ClassKind::Interface) => "END_INTERFACE",
+            None => self.kind.end_keyword(),
+        }
+    }
+
+    pub fn is_interface(&self) -> bool {
+        self.class == Some(ClassKind::Interface)
+    }
 }
 
 /// A METHOD of a FUNCTION_BLOCK: a function of its instance, which reads

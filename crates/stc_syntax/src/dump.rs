@@ -112,13 +112,29 @@ impl Dumper<'_> {
 
     fn pou(&mut self, p: &Pou) {
         self.pragmas(&p.pragmas);
-        let mut text = p.kind.keyword().to_string();
+        let mut text = p.keyword().to_string();
         for (on, word) in [(p.is_abstract, " ABSTRACT"), (p.is_final, " FINAL")] {
             if on {
                 text.push_str(word);
             }
         }
         let _ = write!(text, " {}", self.name(p.name));
+        if let Some(b) = &p.extends {
+            let _ = write!(text, " EXTENDS {}", self.name(*b));
+        }
+        if !p.implements.is_empty() {
+            let word = if p.is_interface() {
+                "EXTENDS"
+            } else {
+                "IMPLEMENTS"
+            };
+            let names: Vec<String> = p
+                .implements
+                .iter()
+                .map(|i| self.name(*i).to_string())
+                .collect();
+            let _ = write!(text, " {word} {}", names.join(", "));
+        }
         if let Some(r) = &p.return_type {
             let _ = write!(text, " : {}", self.type_text(r));
         }
@@ -355,6 +371,14 @@ impl Dumper<'_> {
             StmtKind::Error => self.line(s.span, "Error"),
             StmtKind::Assign { target, value } => {
                 let text = format!("Assign {} := {}", self.expr(*target), self.expr(*value));
+                self.line(s.span, &text);
+            }
+            StmtKind::AssignAttempt { target, value } => {
+                let text = format!(
+                    "AssignAttempt {} ?= {}",
+                    self.expr(*target),
+                    self.expr(*value)
+                );
                 self.line(s.span, &text);
             }
             StmtKind::Call(e) => {

@@ -134,13 +134,29 @@ impl Printer<'_> {
 
     fn pou(&mut self, pou: &Pou) {
         self.pragmas(&pou.pragmas);
-        let mut head = pou.kind.keyword().to_string();
+        let mut head = pou.keyword().to_string();
         for (on, word) in [(pou.is_abstract, " ABSTRACT"), (pou.is_final, " FINAL")] {
             if on {
                 head.push_str(word);
             }
         }
         let _ = write!(head, " {}", self.name(pou.name));
+        if let Some(b) = &pou.extends {
+            let _ = write!(head, " EXTENDS {}", self.name(*b));
+        }
+        if !pou.implements.is_empty() {
+            let word = if pou.is_interface() {
+                "EXTENDS"
+            } else {
+                "IMPLEMENTS"
+            };
+            let names: Vec<String> = pou
+                .implements
+                .iter()
+                .map(|i| self.name(*i).to_string())
+                .collect();
+            let _ = write!(head, " {word} {}", names.join(", "));
+        }
         if let Some(r) = &pou.return_type {
             let _ = write!(head, " : {}", self.type_text(r));
         }
@@ -173,7 +189,7 @@ impl Printer<'_> {
                 }
             }
         });
-        self.line(pou.kind.end_keyword());
+        self.line(pou.end_keyword());
     }
 
     fn sfc(&mut self, sfc: &SfcBody) {
@@ -391,6 +407,10 @@ impl Printer<'_> {
             StmtKind::Error => self.line("(* unparsable statement *)"),
             StmtKind::Assign { target, value } => {
                 let text = format!("{} := {};", self.expr(*target, 0), self.expr(*value, 0));
+                self.line(&text);
+            }
+            StmtKind::AssignAttempt { target, value } => {
+                let text = format!("{} ?= {};", self.expr(*target, 0), self.expr(*value, 0));
                 self.line(&text);
             }
             StmtKind::Call(e) => {

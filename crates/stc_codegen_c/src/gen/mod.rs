@@ -307,7 +307,11 @@ impl<'a> Gen<'a> {
         } else {
             names::pou_type_name(m, p)
         };
-        let _ = writeln!(self.forward, "typedef struct {name}_s {name};");
+        // (A reference to it may have declared it already.)
+        let line = format!("typedef struct {name}_s {name};\n");
+        if !self.forward.contains(&line) {
+            self.forward.push_str(&line);
+        }
         let mut body = String::new();
         for (i, v) in pou.vars.iter_enumerated() {
             let in_struct = function || v.storage != Storage::Frame;

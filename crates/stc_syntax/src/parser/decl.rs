@@ -5,10 +5,10 @@ use stc_diagnostics::{Code, Diagnostic, Span};
 
 use super::{is_item_end, is_item_start, is_var_block_start, Parser};
 use crate::ast::{
-    Access, AccessDecl, AccessDirection, ArrayDim, ArrayInitElem, ConfigInit, Configuration, Edge,
-    EnumMember, Init, InitKind, Item, Located, Method, Pou, PouKind, ProgramConfig, ProgramConn,
-    Resource, Retention, SfcBody, StructInitElem, TaskDecl, TypeDecl, TypeSpec, TypeSpecKind,
-    VarBlock, VarBlockItems, VarDecl, VarKind,
+    Access, AccessDecl, AccessDirection, ArrayDim, ArrayInitElem, ClassKind, ConfigInit,
+    Configuration, Edge, EnumMember, Init, InitKind, Item, Located, Method, Pou, PouKind,
+    ProgramConfig, ProgramConn, Resource, Retention, SfcBody, StructInitElem, TaskDecl, TypeDecl,
+    TypeSpec, TypeSpecKind, VarBlock, VarBlockItems, VarDecl, VarKind,
 };
 use crate::literal;
 use crate::token::{ElemType, Keyword, TokenKind};
@@ -19,6 +19,13 @@ const IL_OPERATORS: &[&str] = &[
     "ORN", "XORN", "ADD", "SUB", "MUL", "DIV", "GT", "GE", "EQ", "NE", "LE", "LT", "JMP", "JMPC",
     "JMPCN", "CAL", "CALC", "CALCN", "RET", "RETC", "RETCN",
 ];
+
+fn class_word(c: ClassKind) -> &'static str {
+    match c {
+        ClassKind::Class => "CLASS",
+        ClassKind::Interface => "INTERFACE",
+    }
+}
 
 fn pou_end(kind: PouKind) -> Keyword {
     match kind {
@@ -107,6 +114,17 @@ impl Parser<'_> {
     // ----- POUs -----------------------------------------------------------
 
     pub(crate) fn pou(&mut self, kind: PouKind, pragmas: Vec<Span>) -> Option<Pou> {
+        self.pou_of(kind, None, pragmas)
+    }
+
+    /// A POU; `class` for a CLASS or an INTERFACE (kept as a POU of kind
+    /// FUNCTION_BLOCK), whose opening and closing words are identifiers.
+    pub(crate) fn pou_of(
+        &mut self,
+        kind: PouKind,
+        class: Option<ClassKind>,
+        pragmas: Vec<Span>,
+    ) -> Option<Pou> {
         let opener = self.bump().span();
         let (mut is_abstract, mut is_final) = (false, false);
         for modifier in [
@@ -135,27 +153,41 @@ impl Parser<'_> {
         self.late_methods.clear();
         self.pou_kind = Some(kind);
         let mut extends = None;
+        let mut implements = Vec::new();
         if kind == PouKind::FunctionBlock {
-            // `EXTENDS Base` names one (possibly qualified) base, `IMPLEMENTS
-            // I1, I2` a list: what follows is the POU's first member.
+            // `EXTENDS Base` names one base (an INTERFACE: a list),
+            // `IMPLEMENTS I1, I2` a list: what follows is the POU's first
+            // member. A qualified name keeps its last part.
+            let interface = class == Some(ClassKind::Interface);
             for word in ["EXTENDS", "IMPLEMENTS"] {
                 if self.at_word(word) {
-                    let span = self.bump().span();
-                    self.unsupported(span, "inheritance (EXTENDS, IMPLEMENTS) is");
+                    let kw = self.bump().span();
+                    if interface && word == "IMPLEMENTS" {
+                        let d = Diagnostic::new(
+                            Code::E1317,
+                            kw,
+                            "an INTERFACE implements nothing: it EXTENDS other interfaces",
+                        )
+                        .with_label("IMPLEMENTS in an INTERFACE");
+                        self.report(d);
+                    }
                     loop {
-                        let first = self.tok();
-                        if first.kind != TokenKind::Ident {
+                        let mut last = self.tok();
+                        if last.kind != TokenKind::Ident {
+                            self.expected("a type name");
                             break;
                         }
                         self.bump();
                         while self.at(TokenKind::Dot) && self.nth_kind(1) == TokenKind::Ident {
                             self.bump();
-                            self.bump();
+                            last = self.bump();
                         }
-                        if word == "EXTENDS" {
-                            extends = Some(self.intern_token(first));
+                        let id = self.intern_token(last);
+                        if word == "EXTENDS" && !interface {
+                            extends = Some(id);
                             break;
                         }
+                        implements.push(id);
                         if !self.eat(TokenKind::Comma) {
                             break;
                         }
@@ -192,6 +224,56 @@ impl Parser<'_> {
         let mut body = Vec::new();
         let mut il = None;
         let mut sfc = None;
+        if let Some(class) = class {
+            // No body: what stands before the END word is reported once and
+            // skipped.
+            let end = if class == ClassKind::Class {
+                "END_CLASS"
+            } else {
+                "END_INTERFACE"
+            };
+            if !self.at_word(end) && !self.at(TokenKind::Eof) {
+                let start = self.tok().span();
+                let what = if class == ClassKind::Class {
+                    "a CLASS has no body: only variables and methods"
+                } else {
+                    "an INTERFACE has only METHOD prototypes"
+                };
+                let d = Diagnostic::new(Code::E1318, start, what)
+                    .with_label("not a variable section or a METHOD")
+                    .with_secondary(opener, format!("in this {}", class_word(class)));
+                self.report(d);
+                while !self.at(TokenKind::Eof) && !self.at_word(end) && !is_item_start(self.kind())
+                {
+                    self.bump();
+                }
+                self.pou_partial = true;
+            }
+            if self.at_word(end) {
+                self.bump();
+            } else {
+                self.expected(&format!("`{end}`"));
+            }
+            return Some(Pou {
+                kind,
+                name,
+                return_type,
+                var_blocks,
+                body,
+                il,
+                sfc,
+                span: opener.to(self.prev().span()),
+                pragmas,
+                extends,
+                implements,
+                class: Some(class),
+                skipped_members: std::mem::take(&mut self.pou_skipped),
+                partial: std::mem::take(&mut self.pou_partial),
+                methods,
+                is_abstract,
+                is_final,
+            });
+        }
         if self.at_sfc_body() {
             let (chart, meaning) = self.sfc_body(kind, &mut var_blocks);
             sfc = Some(chart);
@@ -282,6 +364,8 @@ impl Parser<'_> {
             span: opener.to(self.prev().span()),
             pragmas,
             extends,
+            implements,
+            class: None,
             skipped_members: std::mem::take(&mut self.pou_skipped),
             partial: std::mem::take(&mut self.pou_partial),
             methods,
@@ -341,24 +425,9 @@ impl Parser<'_> {
         } else {
             self.expected("`END_METHOD`");
         }
+        let span = opener.to(self.prev().span());
         Some(Method {
-            pou: Pou {
-                kind: PouKind::Function,
-                name,
-                return_type,
-                var_blocks,
-                body,
-                il: None,
-                sfc: None,
-                span: opener.to(self.prev().span()),
-                pragmas: Vec::new(),
-                extends: None,
-                skipped_members: Vec::new(),
-                partial: false,
-                methods: Vec::new(),
-                is_abstract: false,
-                is_final: false,
-            },
+            pou: method_pou(name, return_type, var_blocks, body, span),
             access,
             is_abstract,
             is_final,
@@ -384,24 +453,9 @@ impl Parser<'_> {
         } else {
             self.expected("`END_ACTION`");
         }
+        let span = opener.to(self.prev().span());
         Some(Method {
-            pou: Pou {
-                kind: PouKind::Function,
-                name,
-                return_type: None,
-                var_blocks: Vec::new(),
-                body,
-                il: None,
-                sfc: None,
-                span: opener.to(self.prev().span()),
-                pragmas: Vec::new(),
-                extends: None,
-                skipped_members: Vec::new(),
-                partial: false,
-                methods: Vec::new(),
-                is_abstract: false,
-                is_final: false,
-            },
+            pou: method_pou(name, None, Vec::new(), body, span),
             access: None,
             is_abstract: false,
             is_final: false,
@@ -1503,5 +1557,35 @@ impl Parser<'_> {
             conns,
             span,
         })
+    }
+}
+
+/// The FUNCTION a METHOD or ACTION is: its name, result, variables and
+/// body.
+fn method_pou(
+    name: crate::ast::Ident,
+    return_type: Option<TypeSpec>,
+    var_blocks: Vec<VarBlock>,
+    body: Vec<crate::ast::Stmt>,
+    span: Span,
+) -> Pou {
+    Pou {
+        kind: PouKind::Function,
+        name,
+        return_type,
+        var_blocks,
+        body,
+        il: None,
+        sfc: None,
+        span,
+        pragmas: Vec::new(),
+        extends: None,
+        implements: Vec::new(),
+        class: None,
+        skipped_members: Vec::new(),
+        partial: false,
+        methods: Vec::new(),
+        is_abstract: false,
+        is_final: false,
     }
 }

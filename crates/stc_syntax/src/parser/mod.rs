@@ -791,6 +791,18 @@ impl<'a> Parser<'a> {
                 None
             }
             TokenKind::Ident if self.at_unit_part() => None,
+            TokenKind::Ident
+                if (self.at_word("CLASS") || self.at_word("INTERFACE"))
+                    && self.nth_kind(1) == TokenKind::Ident =>
+            {
+                let class = if self.at_word("CLASS") {
+                    crate::ast::ClassKind::Class
+                } else {
+                    crate::ast::ClassKind::Interface
+                };
+                self.pou_of(crate::ast::PouKind::FunctionBlock, Some(class), pragmas)
+                    .map(Item::Pou)
+            }
             TokenKind::Ident if self.at_unsupported_item() => None,
             _ => {
                 self.expected(
@@ -821,8 +833,6 @@ impl<'a> Parser<'a> {
             return true;
         }
         for (word, end, what) in [
-            ("INTERFACE", "END_INTERFACE", "interfaces are"),
-            ("CLASS", "END_CLASS", "classes (3rd edition) are"),
             ("ACTIONS", "END_ACTIONS", "ACTIONS blocks are"),
             ("METHOD", "END_METHOD", "methods are"),
             ("PROPERTY", "END_PROPERTY", "properties are"),

@@ -273,16 +273,28 @@ impl Parser<'_> {
                 StmtKind::Assign { target, value }
             }
             TokenKind::QuestionAssign => {
-                let span = self.bump().span();
-                self.unsupported(span, "assignment attempt `?=` is");
+                self.bump();
                 let value = self.expr();
-                StmtKind::Unsupported(vec![target, value])
+                StmtKind::AssignAttempt { target, value }
             }
             TokenKind::Ident if self.at_word("REF") && self.nth_kind(1) == TokenKind::Eq => {
-                let span = self.bump().span().to(self.bump().span());
-                self.unsupported(span, "reference assignment `REF=` is");
-                let value = self.expr();
-                StmtKind::Unsupported(vec![target, value])
+                // `r REF= x` is `r := REF(x)`.
+                let word = self.bump();
+                self.bump();
+                let x = self.expr();
+                let callee = ExprKind::Name(self.intern_token(word));
+                let callee = self.ast.alloc(callee, word.span());
+                let xspan = self.ast.expr(x).span;
+                let args = vec![crate::ast::Arg {
+                    kind: crate::ast::ArgKind::Positional(x),
+                    span: xspan,
+                }];
+                let call = ExprKind::Call {
+                    callee,
+                    args: args.into_boxed_slice(),
+                };
+                let value = self.ast.alloc(call, word.span().to(xspan));
+                StmtKind::Assign { target, value }
             }
             _ if matches!(self.ast.expr(target).kind, ExprKind::Call { .. }) => {
                 StmtKind::Call(target)

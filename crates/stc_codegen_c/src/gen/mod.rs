@@ -209,11 +209,21 @@ impl<'a> Gen<'a> {
         header.push('\n');
         // A reference (REF_TO T): the address of its variable, NULL for
         // none; a dereference casts it to the target's type after checking
-        // it is not NULL. Declared only where used (MISRA C 2.3).
-        let m = self.m;
-        let has_refs =
-            (0..m.types.len() as u32).any(|t| matches!(m.types.kind(TypeId(t)), TypeKind::Ref(_)));
-        if has_refs {
+        // it is not NULL. Declared only where the generated code uses it
+        // (MISRA C 2.3): a program may have a reference type that no
+        // variable or expression has (a method's instance, for one).
+        let uses_refs = [
+            &self.forward,
+            &self.typedefs,
+            &self.data,
+            &self.protos,
+            &self.bodies,
+            &self.meta_extra,
+            &init_all,
+        ]
+        .iter()
+        .any(|text| text.contains("stc_ref"));
+        if uses_refs {
             header.push_str("typedef void *stc_ref;\n");
         }
         header.push_str(&self.forward);

@@ -86,7 +86,8 @@ PROGRAM P VAR f : Fb; n : INT; END_VAR
   f(io := n);
   n := f.io + f.v;
 END_PROGRAM",
-        Options::default(),
+        // Without --std iec2 reading the in-out is W0115.
+        Options { iec2: true },
         Code::E0104,
     );
     assert_eq!(

@@ -28,6 +28,7 @@ pub fn fault_name(k: FaultKind) -> &'static str {
         FaultKind::Watchdog => "WATCHDOG",
         FaultKind::InvalidCode => "INVALID_CODE",
         FaultKind::NullReference => "NULL_REFERENCE",
+        FaultKind::PointerBounds => "POINTER_BOUNDS",
     }
 }
 

@@ -95,7 +95,7 @@ pub fn type_name(m: &Module, t: TypeId) -> String {
         },
         TypeKind::Fb(p) | TypeKind::Program(p) => pou_type_name(m, *p),
         TypeKind::Error | TypeKind::Void => "uint8_t".to_string(),
-        TypeKind::Ref(_) => "stc_ref".to_string(),
+        TypeKind::Ref(_) | TypeKind::Ptr(_) => "stc_ref".to_string(),
     }
 }
 

@@ -124,11 +124,8 @@ thousands of nested parentheses). Split the expression with intermediate
 variables.";
     E0030 Error "not supported yet"
 "The construct is valid in some IEC 61131-3 dialect but stc does not support
-it yet: the
-object-oriented extensions (METHOD, PROPERTY, ACTION outside a Sequential
-Function Chart, chart elements after ST statements, INTERFACE, EXTENDS,
-IMPLEMENTS), POINTER TO, REFERENCE TO, REF_TO and the dereference `^`,
-`REF=`, UNION types, VAR_STAT/VAR_INST sections, variable-length arrays
+it yet: PROPERTY, chart elements after ST statements, the CODESYS
+REFERENCE TO, UNION types, VAR_STAT/VAR_INST sections, variable-length arrays
 (`ARRAY[*]`, `ARRAY[..]`), the `__` operators of CODESYS and TwinCAT
 (`__TRY`, `__NEW`...) and logi.CAD UNIT files. The
 construct is reported once and skipped (or given an unknown type), and
@@ -618,6 +615,43 @@ type, else NULL. Both sides must be interface values or references to
 function blocks or classes (the target a variable), and the instance could
 fit: one type extends or implements the other, or one is an interface.
 Use `:=` for other values.";
+
+    E1401 Error "ADR needs a variable"
+"`ADR(x)` is a pointer to the variable `x` (or a member or element of one,
+or what a pointer or reference points at). It needs a variable that is not
+CONSTANT, of a type a pointer can see: an elementary, string, array,
+structure or function block type (not a reference, program or interface).
+A literal, an expression, a bit `w.3` or a direct address has no address.";
+    E1402 Error "pointer of the wrong type"
+"A `POINTER TO T` (or `POINTER TO ARRAY[..] OF T`) holds `ADR(x)` of a
+variable `x` of type `T` or an array of `T`, another pointer to the same
+element type `T`, or `0`/`NULL`. A pointer to BYTE, USINT, SINT or CHAR may
+also point at the bytes of a STRING (its characters then a NUL). stc does
+not convert numbers to pointers or pointers to numbers, and does not view a
+variable through a pointer of another type (a REAL through a POINTER TO
+DWORD): the pointer could not be checked. Convert the value instead.";
+    E1403 Error "operator not defined on pointers"
+"Pointers have `p + n` and `p - n` (the pointer moved by `n` bytes, `n` an
+integer), `p - q` (the distance in bytes between two pointers into one
+variable, a DINT), `=`, `<>`, `<`, `<=`, `>`, `>=` between pointers of the
+same type, and `=`/`<>` with `0`. `ADR(x)` has no pointer type of its own:
+assign it to a POINTER TO variable before moving, comparing or
+dereferencing it.";
+    E1404 Error "pointer may outlive what it points at"
+"A pointer into a FUNCTION's or METHOD's variables (or a VAR_TEMP, or a
+VAR_IN_OUT, which may stand for such a variable of the caller) would point
+at freed memory once the call returns. Such a pointer may be kept only in
+that call's own variables (VAR, VAR_INPUT, VAR_TEMP) and passed to the
+calls it makes; it cannot be stored in a global, an instance variable, a
+function's result or outputs, or through another pointer. Point at a global
+or an instance variable, or keep the pointer local.";
+    E1405 Error "SIZEOF of something without a size"
+"`SIZEOF(x)` is the size in bytes of the variable or type `x` in the byte
+view of pointers: elementary types their natural size (TIME, DATE, TOD and
+DT 8 bytes), STRING(n) n + 1 (the characters and the NUL), WSTRING(n)
+2(n + 1), arrays the sum of their elements, structures the sum of their
+members without padding, pointers 8. Function block instances and
+references have no such size.";
 
     W0101 Warning "result depends on evaluation order"
 "A variable is written by an output parameter (`=>`) or VAR_IN_OUT of one call

@@ -332,7 +332,7 @@ VAR_OUTPUT
     level : INT;
 END_VAR
 VAR
-    p_level : POINTER TO INT;   // E0030
+    p_level : REFERENCE TO INT;   // E0030
 END_VAR
     level := 50;
 END_PROGRAM
@@ -3849,6 +3849,125 @@ END_VAR
     rn := REF(n);
     rm := REF(m);
     m();
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1401,
+        r"PROGRAM Main
+VAR
+    x : INT;
+    p : POINTER TO INT;
+END_VAR
+    p := ADR(x + 1); // E1401
+    x := p^;
+END_PROGRAM
+",
+        r"PROGRAM Main
+VAR
+    x : INT;
+    p : POINTER TO INT;
+END_VAR
+    p := ADR(x);
+    x := p^ + 1;
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1402,
+        r"PROGRAM Main
+VAR
+    r : REAL;
+    d : DWORD;
+    p : POINTER TO DWORD;
+END_VAR
+    p := ADR(r); // E1402
+    d := p^;
+END_PROGRAM
+",
+        r"PROGRAM Main
+VAR
+    r : REAL;
+    d : DWORD;
+    p : POINTER TO REAL;
+END_VAR
+    p := ADR(r);
+    d := REAL_TO_DWORD(p^);
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1403,
+        r"PROGRAM Main
+VAR
+    a : ARRAY[0..3] OF INT;
+    p : POINTER TO INT;
+END_VAR
+    p := ADR(a);
+    p := p * 2; // E1403
+    a[0] := p^;
+END_PROGRAM
+",
+        r"PROGRAM Main
+VAR
+    a : ARRAY[0..3] OF INT;
+    p : POINTER TO INT;
+END_VAR
+    p := ADR(a);
+    p := p + 2;
+    a[0] := p^;
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1404,
+        r"FUNCTION_BLOCK Keeper
+VAR_TEMP t : INT; END_VAR
+VAR p : POINTER TO INT; END_VAR
+    p := ADR(t); // E1404
+    t := p^;
+END_FUNCTION_BLOCK
+
+PROGRAM Main
+VAR k : Keeper; END_VAR
+    k();
+END_PROGRAM
+",
+        r"FUNCTION_BLOCK Keeper
+VAR t : INT; p : POINTER TO INT; END_VAR
+    p := ADR(t);
+    t := p^;
+END_FUNCTION_BLOCK
+
+PROGRAM Main
+VAR k : Keeper; END_VAR
+    k();
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1405,
+        r"FUNCTION_BLOCK Motor
+END_FUNCTION_BLOCK
+
+PROGRAM Main
+VAR
+    m : Motor;
+    n : UDINT;
+END_VAR
+    n := SIZEOF(m); // E1405
+    m();
+END_PROGRAM
+",
+        r"TYPE Setting : STRUCT speed : INT; limit : REAL; END_STRUCT; END_TYPE
+
+PROGRAM Main
+VAR
+    s : Setting;
+    n : UDINT;
+END_VAR
+    n := SIZEOF(s);
+    s.speed := 1;
 END_PROGRAM
 ",
     ),

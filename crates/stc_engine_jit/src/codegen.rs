@@ -1599,6 +1599,12 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
     /// Converts a value between types: natively between plain numerics (the
     /// VM's `cvt`), else through `stc_values`.
     fn convert(&mut self, a: V, from_t: TypeId, to_t: TypeId) -> Result<V, Error> {
+        if matches!(self.g.m.types.kind(from_t), TypeKind::Ref(_))
+            && matches!(self.g.m.types.kind(to_t), TypeKind::Ref(_))
+        {
+            // A reference seen as another (pointers): the same address.
+            return Ok(a);
+        }
         let (from, to) = (self.g.m.types.scalar(from_t), self.g.m.types.scalar(to_t));
         match (from, to, a) {
             (Some(f), Some(t), _) if f == t => match (a, self.g.m.types.kind(to_t)) {

@@ -368,7 +368,7 @@ impl Layouts {
         }
         let l = match m.types.kind(t).clone() {
             TypeKind::Error | TypeKind::Void => Ok(Layout { size: 0, align: 1 }),
-            TypeKind::Ref(_) => Ok(Layout {
+            TypeKind::Ref(_) | TypeKind::Ptr(_) => Ok(Layout {
                 size: REF_SIZE,
                 align: REF_SIZE,
             }),

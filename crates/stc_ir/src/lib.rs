@@ -356,11 +356,15 @@ pub enum FaultKind {
     InvalidCode = 8,
     /// A dereference of NULL.
     NullReference = 9,
+    /// A pointer dereferenced outside its object (or not at a whole
+    /// element of it), or two pointers into different objects ordered or
+    /// subtracted.
+    PointerBounds = 10,
 }
 
 impl FaultKind {
     /// Every kind, in the order of their codes.
-    pub const ALL: [FaultKind; 9] = [
+    pub const ALL: [FaultKind; 10] = [
         FaultKind::DivisionByZero,
         FaultKind::IndexOutOfBounds,
         FaultKind::SubrangeViolation,
@@ -370,6 +374,7 @@ impl FaultKind {
         FaultKind::Watchdog,
         FaultKind::InvalidCode,
         FaultKind::NullReference,
+        FaultKind::PointerBounds,
     ];
 
     /// The kind's stable code (see the type's documentation).
@@ -394,6 +399,7 @@ impl FaultKind {
             FaultKind::Watchdog => "watchdog",
             FaultKind::InvalidCode => "invalid bytecode",
             FaultKind::NullReference => "NULL dereference",
+            FaultKind::PointerBounds => "pointer out of bounds",
         }
     }
 

@@ -2,6 +2,7 @@
 
 mod il;
 mod oop;
+mod pointers;
 
 use stc_diagnostics::{SourceMap, Span};
 use stc_sema::idx::IdVec;
@@ -111,6 +112,8 @@ pub fn lower(ast: &Ast, analysis: Analysis, interner: &Interner, sources: &Sourc
             vars: IdVec::new(),
             keeps: &keeps,
             pending: Vec::new(),
+            post: Vec::new(),
+            writing: false,
             cr_vars: rustc_hash::FxHashMap::default(),
         };
         pous.push(l.pou(def, src));
@@ -150,6 +153,11 @@ struct Lowerer<'a> {
     /// with EN or ENO taken out of an expression (and the operands before
     /// them, so evaluation stays left to right).
     pending: Vec<Stmt>,
+    /// Statements that must run after the statement being lowered (a
+    /// byte written into a STRING through a pointer).
+    post: Vec<Stmt>,
+    /// Lowering a place that the statement writes.
+    writing: bool,
     /// In an Instruction List body: the hidden variable of the current
     /// result for each type it takes.
     cr_vars: rustc_hash::FxHashMap<TypeId, VarId>,
@@ -355,7 +363,9 @@ impl<'a> Lowerer<'a> {
                 out.append(&mut stmts);
             }
             SK::Assign { target, value } => {
+                self.writing = true;
                 let place = self.place(*target);
+                self.writing = false;
                 let mut v = self.expr(*value);
                 out.append(&mut self.pending);
                 if let TypeKind::Subrange { lo, hi, .. } = self.a.types.kind(place.ty) {
@@ -375,6 +385,7 @@ impl<'a> Lowerer<'a> {
                     }
                 }
                 out.push(at(self, StmtKind::Assign { place, value: v }));
+                out.append(&mut self.post);
             }
             SK::Call(e) => {
                 let k = self.call_stmt(*e);
@@ -382,6 +393,7 @@ impl<'a> Lowerer<'a> {
                 if let Some(k) = k {
                     out.push(at(self, k));
                 }
+                out.append(&mut self.post);
             }
             SK::If {
                 branches,
@@ -881,7 +893,7 @@ impl<'a> Lowerer<'a> {
                     None => StmtKind::Eval(value),
                 }
             }
-            CallTarget::CurTime | CallTarget::Ref | CallTarget::Method { .. } => {
+            CallTarget::CurTime | CallTarget::Ref | CallTarget::Adr | CallTarget::Method { .. } => {
                 // (REF and method calls never have EN/ENO: the analyser
                 // binds none, so they never come here.)
                 let value = Expr {
@@ -1107,19 +1119,40 @@ impl<'a> Lowerer<'a> {
                     }
                     inputs.push((v, x));
                 }
-                BoundArgKind::InOut(e) => inouts.push((v, self.place(*e))),
-                BoundArgKind::Output { target, negated } => outputs.push(Output {
-                    var: v,
-                    target: self.place(*target),
-                    negated: *negated,
-                }),
+                BoundArgKind::InOut(e) => {
+                    self.writing = true;
+                    let p = self.place(*e);
+                    self.writing = false;
+                    inouts.push((v, p))
+                }
+                BoundArgKind::Output { target, negated } => {
+                    self.writing = true;
+                    let target = self.place(*target);
+                    self.writing = false;
+                    outputs.push(Output {
+                        var: v,
+                        target,
+                        negated: *negated,
+                    })
+                }
             }
         }
         (inputs, inouts, outputs)
     }
 
     fn expr(&mut self, e: ExprId) -> Expr {
+        // (A value is read: a dereference inside it is not written.)
+        let writing = std::mem::replace(&mut self.writing, false);
+        let x = self.value(e);
+        self.writing = writing;
+        x
+    }
+
+    fn value(&mut self, e: ExprId) -> Expr {
         let ty = self.a.expr_type(e);
+        if self.a.null_ptrs.contains(&e) {
+            return self.null_ptr();
+        }
         let base = match self.a.consts.get(&e) {
             Some(v) => Expr {
                 kind: ExprKind::Const(v.clone()),
@@ -1211,6 +1244,11 @@ impl<'a> Lowerer<'a> {
                     Box::new(o),
                 )
             }
+            AK::Binary { op, lhs, rhs }
+                if self.is_ptr(self.a.expr_type(*lhs)) || self.is_ptr(self.a.expr_type(*rhs)) =>
+            {
+                return self.ptr_binary(e, *op, *lhs, *rhs);
+            }
             AK::Binary { op, lhs, rhs } => {
                 let mut l = [self.expr(*lhs)];
                 let mark = self.pending.len();
@@ -1289,6 +1327,10 @@ impl<'a> Lowerer<'a> {
             CallTarget::Ref => match info.args.first().map(|a| &a.kind) {
                 Some(BoundArgKind::Input(x)) => ExprKind::Ref(self.place(*x)),
                 _ => ExprKind::Null,
+            },
+            CallTarget::Adr => match self.adr_arg(info) {
+                Some(x) => return self.adr(e, x),
+                None => ExprKind::Const(Value::Int(0)),
             },
             CallTarget::FbInstance(_) => ExprKind::Const(Value::Int(0)),
             CallTarget::Std { intrinsic, .. } => {
@@ -1415,6 +1457,9 @@ impl<'a> Lowerer<'a> {
 
     fn place(&mut self, e: ExprId) -> Place {
         let ty = self.a.expr_type(e);
+        if let Some((p, indices)) = self.ptr_deref_parts(e) {
+            return self.ptr_deref(e, p, indices, ty);
+        }
         match &self.ast.expr(e).kind {
             AK::Paren(i) => self.place(*i),
             AK::Address(a) => Place {

@@ -280,7 +280,7 @@ impl<'m> Tr<'m> {
         let m = self.m;
         match m.types.kind(t) {
             // (A reference has no cells; using one is refused.)
-            TypeKind::Ref(_) => self.slot(Slot::Absent),
+            TypeKind::Ref(_) | TypeKind::Ptr(_) => self.slot(Slot::Absent),
             TypeKind::Elem(_)
             | TypeKind::Subrange { .. }
             | TypeKind::Enum { .. }

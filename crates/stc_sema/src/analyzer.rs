@@ -141,10 +141,19 @@ pub(crate) struct Sema<'a> {
     pub ref_taken: FxHashSet<Symbol>,
     /// `REF_TO T` met inside the declaration of the named type `T` (by
     /// index in `type_decls`): the reference type, completed when `T` is.
-    pub pending_refs: FxHashMap<usize, TypeId>,
+    pub pending_refs: FxHashMap<(usize, bool), TypeId>,
     /// Operands of IL `S`/`R` that name function block instances (the
     /// instruction sets that instance's input).
     pub il_fb_inputs: FxHashSet<ExprId>,
+    /// The element types of the objects `ADR` points into, in the order
+    /// first met (a pointer's object kind is its index, from 1).
+    pub ptr_kinds: Vec<TypeId>,
+    /// `ADR` calls of variables that live only during a call.
+    pub short_adrs: FxHashSet<ExprId>,
+    /// `0` and `NULL` standing for the null pointer.
+    pub null_ptrs: FxHashSet<ExprId>,
+    /// `p^` of a pointer to an array not indexed with every dimension.
+    pub whole_ptr_arrays: Vec<stc_diagnostics::Span>,
 }
 
 impl<'a> Sema<'a> {
@@ -195,6 +204,10 @@ impl<'a> Sema<'a> {
             ref_taken,
             pending_refs: FxHashMap::default(),
             il_fb_inputs: FxHashSet::default(),
+            ptr_kinds: Vec::new(),
+            short_adrs: FxHashSet::default(),
+            null_ptrs: FxHashSet::default(),
+            whole_ptr_arrays: Vec::new(),
         }
     }
 
@@ -237,6 +250,7 @@ impl<'a> Sema<'a> {
             self.diags
                 .retain(|d| d.is_error() || !(prelude.lo <= d.span.lo && d.span.lo < prelude.hi));
         }
+        let ptrs = self.finish_pointers();
         let mut implicit_used = FxHashSet::default();
         for (pi, pou) in self.pous.iter().enumerate() {
             for (vi, v) in pou.vars.iter().enumerate() {
@@ -249,6 +263,9 @@ impl<'a> Sema<'a> {
         Analysis {
             implicit_used,
             il_fb_inputs: self.il_fb_inputs,
+            ptr_kinds: self.ptr_kinds,
+            null_ptrs: self.null_ptrs,
+            ptrs,
             types: self.types,
             pous: self.pous,
             globals: self.globals,
@@ -395,7 +412,7 @@ fn ref_taken_names(ast: &Ast, interner: &Interner) -> FxHashSet<Symbol> {
         let ExprKind::Name(id) = &ast.expr(*callee).kind else {
             continue;
         };
-        if interner.key(id.sym) != "REF" {
+        if !matches!(interner.key(id.sym), "REF" | "ADR") {
             continue;
         }
         for a in args.iter() {

@@ -36,7 +36,7 @@ fn arg_value(a: &Arg) -> ExprId {
 impl<'a> Sema<'a> {
     /// Checks the arguments of a call whose callee is not known, for their
     /// own errors only.
-    fn loose_args(&mut self, args: &[Arg], scope: Scope) {
+    pub(crate) fn loose_args(&mut self, args: &[Arg], scope: Scope) {
         for a in args {
             self.check_expr(arg_value(a), Some(TypeId::ERROR), scope);
         }
@@ -136,6 +136,12 @@ impl<'a> Sema<'a> {
                 if self.reserved_name(*id, "a function") {
                     self.loose_args(args, scope);
                     return TypeId::ERROR;
+                }
+                if key == "ADR" {
+                    return self.adr_call(e, args, span, scope);
+                }
+                if key == "SIZEOF" {
+                    return self.sizeof_call(e, args, expected, span, scope);
                 }
                 if key == "REF" {
                     // The 3rd-edition reference operator.
@@ -580,6 +586,11 @@ impl<'a> Sema<'a> {
                         && param.ty != TypeId::ERROR
                         && self.coerce(value, vt, param.ty, Ctx::Arg, &pname)
                     {
+                        if self.pous[q.0 as usize].kind != PouKind::Function {
+                            // An instance's input outlives the call.
+                            let span = self.ast.expr(value).span;
+                            self.check_ptr_store(None, value, param.ty, span);
+                        }
                         let c = self
                             .consts
                             .get(&value)

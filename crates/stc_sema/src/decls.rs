@@ -430,7 +430,17 @@ impl<'a> Sema<'a> {
         }
         // `REF_TO` this type inside its own declaration (a linked list):
         // the reference made before the type existed now refers to it.
-        if let Some(r) = self.pending_refs.remove(&i) {
+        for ptr in [false, true] {
+            let Some(r) = self.pending_refs.remove(&(i, ptr)) else {
+                continue;
+            };
+            let wrap = |t| {
+                if ptr {
+                    TypeKind::Ptr(t)
+                } else {
+                    TypeKind::Ref(t)
+                }
+            };
             if r == ty {
                 // `TYPE R : REF_TO R;`: a reference to itself, no type.
                 let name = self.spelled(decl.name.sym, decl.name.span);
@@ -439,10 +449,10 @@ impl<'a> Sema<'a> {
                     decl.name.span,
                     format!("type `{name}` is defined in terms of itself"),
                 );
-                *self.types.kind_mut(r) = TypeKind::Ref(TypeId::ERROR);
+                *self.types.kind_mut(r) = wrap(TypeId::ERROR);
                 ty = TypeId::ERROR;
             } else {
-                *self.types.kind_mut(r) = TypeKind::Ref(ty);
+                *self.types.kind_mut(r) = wrap(ty);
             }
         }
         let e = &mut self.type_decls[i];
@@ -760,17 +770,23 @@ impl<'a> Sema<'a> {
                     None,
                 )
             }
-            TypeSpecKind::Ref(target) => {
+            TypeSpecKind::Ref(target) | TypeSpecKind::Pointer(target) => {
+                let ptr = matches!(spec.kind, TypeSpecKind::Pointer(_));
                 // A reference to a named type being declared (`next :
                 // REF_TO Node` inside Node) is completed when the type is.
                 if let TypeSpecKind::Named(id) = &target.kind {
                     if let Some(GlobalName::Type(i)) = self.names.get(&id.sym).copied() {
                         if self.type_decls[i].state == State::InProgress {
-                            if let Some(&r) = self.pending_refs.get(&i) {
+                            if let Some(&r) = self.pending_refs.get(&(i, ptr)) {
                                 return (r, None);
                             }
-                            let r = self.types.add(TypeKind::Ref(TypeId::ERROR), None, None);
-                            self.pending_refs.insert(i, r);
+                            let kind = if ptr {
+                                TypeKind::Ptr(TypeId::ERROR)
+                            } else {
+                                TypeKind::Ref(TypeId::ERROR)
+                            };
+                            let r = self.types.add(kind, None, None);
+                            self.pending_refs.insert((i, ptr), r);
                             return (r, None);
                         }
                     }
@@ -779,7 +795,11 @@ impl<'a> Sema<'a> {
                 if t == TypeId::ERROR {
                     return (TypeId::ERROR, None);
                 }
-                (self.types.ref_to(t), None)
+                if ptr {
+                    (self.types.ptr_to(t), None)
+                } else {
+                    (self.types.ref_to(t), None)
+                }
             }
         }
     }
@@ -1209,7 +1229,7 @@ impl<'a> Sema<'a> {
             return false;
         }
         match self.types.kind(t).clone() {
-            TypeKind::Ref(_) => true,
+            TypeKind::Ref(_) | TypeKind::Ptr(_) => true,
             TypeKind::Array { elem, .. } => self.type_has_ref(elem, depth + 1),
             TypeKind::Struct { fields } => {
                 fields.iter().any(|f| self.type_has_ref(f.ty, depth + 1))
@@ -1255,10 +1275,10 @@ impl<'a> Sema<'a> {
             Diagnostic::new(
                 Code::E1308,
                 span,
-                "a RETAIN variable cannot hold a reference",
+                "a RETAIN variable cannot hold a reference or a pointer",
             )
             .with_help(
-                "an address does not survive a restart: keep references out of RETAIN variables",
+                "an address does not survive a restart: keep references and pointers out of RETAIN variables",
             ),
         );
     }

@@ -254,6 +254,24 @@ impl<'a> Sema<'a> {
         if t == TypeId::ERROR {
             return TypeId::ERROR;
         }
+        if let Some(target) = self.types.ptr_target(t) {
+            if matches!(self.types.kind(target), TypeKind::Array { .. }) {
+                // Only its elements: `p^[i]` (see `index`).
+                self.whole_ptr_arrays.push(span);
+            }
+            if target == TypeId::VOID {
+                self.emit(
+                    Diagnostic::new(
+                        Code::E1403,
+                        span,
+                        "`ADR(x)` cannot be dereferenced: it has no pointer type of its own",
+                    )
+                    .with_help("assign it to a POINTER TO variable and dereference that"),
+                );
+                return TypeId::ERROR;
+            }
+            return target;
+        }
         match self.types.ref_target(t) {
             Some(TypeId::VOID) => {
                 self.emit(
@@ -1257,6 +1275,17 @@ impl<'a> Sema<'a> {
             self.partial_index_ok = Some(base);
         }
         let bt = self.check_expr(base, None, scope);
+        let mut b = base;
+        while let ExprKind::Paren(i) = &self.ast.expr(b).kind {
+            b = *i;
+        }
+        if let ExprKind::Deref(_) = self.ast.expr(b).kind {
+            let bspan = self.ast.expr(b).span;
+            let all = matches!(self.types.kind(bt), TypeKind::Array { dims, .. } if dims.len() == indices.len());
+            if all {
+                self.whole_ptr_arrays.retain(|s| *s != bspan);
+            }
+        }
         let (dims, elem) = match self.types.kind(bt).clone() {
             TypeKind::Array { dims, elem } => (dims, elem),
             _ => {
@@ -1523,6 +1552,11 @@ impl<'a> Sema<'a> {
             } else {
                 TypeId::ERROR
             };
+        }
+        let lptr = matches!(self.types.kind(lt), TypeKind::Ptr(_));
+        let rptr = matches!(self.types.kind(rt), TypeKind::Ptr(_));
+        if lptr || rptr {
+            return self.ptr_binary(e, op, (l, lt), (r, rt), span);
         }
         let lref = matches!(self.types.kind(lt), TypeKind::Ref(_));
         let rref = matches!(self.types.kind(rt), TypeKind::Ref(_));
@@ -1909,6 +1943,9 @@ impl<'a> Sema<'a> {
         }
         if from != to && self.instance_as_value(e, from) {
             return false;
+        }
+        if let Some(ok) = self.coerce_ptr(e, from, to, what) {
+            return ok;
         }
         let refs = matches!(self.types.kind(from), TypeKind::Ref(_))
             || matches!(self.types.kind(to), TypeKind::Ref(_));

@@ -22,7 +22,9 @@ mod decls;
 mod expr;
 mod flow;
 pub mod idx;
+pub use pointers::byte_like;
 mod il;
+mod pointers;
 pub mod prelude;
 mod sfc;
 mod stmt;
@@ -316,6 +318,8 @@ pub enum CallTarget {
     CurTime,
     /// `REF(x)`: the reference to its one argument, a variable.
     Ref,
+    /// `ADR(x)`: a pointer to its one argument, a variable.
+    Adr,
     /// A METHOD (a function with the hidden in-out [`PouDef::this`]),
     /// called on the instance `this` denotes (`inst.m()`), or on the
     /// running instance (`m()` in the block's body or methods) for `None`.
@@ -335,6 +339,43 @@ pub enum BoundArgKind {
     Input(ExprId),
     InOut(ExprId),
     Output { target: ExprId, negated: bool },
+}
+
+/// Pointers after the analysis (docs/oop.md, "Pointers"): every pointer
+/// type is then a structure `{OBJECT : UDINT; BASE : REF_TO BYTE; OFFSET :
+/// DINT}`: the object kind (0 for NULL, else the index in `kinds` plus 1),
+/// the reference to the whole object, and the byte offset into it.
+#[derive(Clone, Debug)]
+pub struct PtrInfo {
+    /// The one structure type of every pointer value.
+    pub ptr: TypeId,
+    /// The target type of each pointer type (VOID for `ADR(x)`'s).
+    pub targets: rustc_hash::FxHashMap<TypeId, TypeId>,
+    pub kinds: Vec<PtrKind>,
+    /// `REF_TO V` for the element type `V` of every pointer type's target.
+    pub elem_refs: rustc_hash::FxHashMap<TypeId, TypeId>,
+    pub string: TypeId,
+    pub char_ty: TypeId,
+    pub byte: TypeId,
+    pub dint: TypeId,
+    pub udint: TypeId,
+}
+
+/// One kind of object a pointer can point into: the type of a variable
+/// `ADR` was given (an array as a whole for an element of it).
+#[derive(Clone, Debug)]
+pub struct PtrKind {
+    pub obj: TypeId,
+    /// The innermost element type and how many of them the object has.
+    pub elem: TypeId,
+    pub count: u64,
+    /// `SIZEOF` of one element.
+    pub elem_size: u64,
+    /// `REF_TO obj` and `REF_TO elem`.
+    pub obj_ref: TypeId,
+    pub elem_ref: TypeId,
+    /// A STRING, whose bytes a pointer to BYTE, USINT or CHAR can see.
+    pub string: bool,
 }
 
 /// The result of analysis.
@@ -358,6 +399,14 @@ pub struct Analysis {
     /// block instances: the instruction sets the instance's input (the
     /// `fb_form` of `IlSem::SetReset`), not the operand itself.
     pub il_fb_inputs: rustc_hash::FxHashSet<ExprId>,
+    /// The element types of the objects `ADR` points into: a pointer's
+    /// object kind is the index here plus 1 (0 is NULL).
+    pub ptr_kinds: Vec<TypeId>,
+    /// `0` and `NULL` standing for the null pointer.
+    pub null_ptrs: rustc_hash::FxHashSet<ExprId>,
+    /// What the lowering of pointers needs; `None` in a program without
+    /// pointer types.
+    pub ptrs: Option<PtrInfo>,
     pub diagnostics: Vec<Diagnostic>,
 }
 

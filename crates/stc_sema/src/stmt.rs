@@ -79,6 +79,8 @@ impl<'a> Sema<'a> {
                 if tt != TypeId::ERROR && vt != TypeId::ERROR {
                     let what = self.target_name(*target);
                     if self.coerce(*value, vt, tt, Ctx::Assign, &what) {
+                        let span = self.ast.expr(*value).span;
+                        self.check_ptr_store(Some(*target), *value, tt, span);
                         let c = self
                             .prop_value(*value)
                             .and_then(|c| self.convert_const(&c, vt, tt));

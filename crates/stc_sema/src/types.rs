@@ -87,6 +87,12 @@ pub enum TypeKind {
     /// target type ([`TypeTable::ref_to`]); `Ref(VOID)` is the type of
     /// `NULL`, which every reference type accepts.
     Ref(TypeId),
+    /// `POINTER TO T` (CODESYS): a checked pointer into one object of the
+    /// program's memory (docs/oop.md, "Pointers"). One type per target
+    /// type ([`TypeTable::ptr_to`]); `Ptr(VOID)` is the type of `ADR(x)`,
+    /// which every pointer type accepts when the view is allowed. The
+    /// lowering replaces it by a structure ([`TypeTable::pointer_fields`]).
+    Ptr(TypeId),
 }
 
 #[derive(Clone, PartialEq, Debug)]
@@ -114,6 +120,7 @@ pub struct TypeTable {
     types: Vec<TypeInfo>,
     strings: rustc_hash::FxHashMap<(bool, u32), TypeId>,
     refs: rustc_hash::FxHashMap<TypeId, TypeId>,
+    ptrs: rustc_hash::FxHashMap<TypeId, TypeId>,
     /// Per function block, class or interface: the POUs it extends or
     /// implements directly (docs/oop.md); an instance of it is one of
     /// theirs.
@@ -146,6 +153,7 @@ impl TypeTable {
             types: Vec::new(),
             strings: Default::default(),
             refs: Default::default(),
+            ptrs: Default::default(),
             supers: Default::default(),
             interfaces: Default::default(),
         };
@@ -203,6 +211,84 @@ impl TypeTable {
         let r = self.add(TypeKind::Ref(t), None, None);
         self.refs.insert(t, r);
         r
+    }
+
+    /// The type `POINTER TO t` (one per target type); `ptr_to(VOID)` is
+    /// the type of `ADR(x)`.
+    pub fn ptr_to(&mut self, t: TypeId) -> TypeId {
+        if let Some(&r) = self.ptrs.get(&t) {
+            return r;
+        }
+        let r = self.add(TypeKind::Ptr(t), None, None);
+        self.ptrs.insert(t, r);
+        r
+    }
+
+    /// The target type of a pointer type (VOID for `ADR(x)`'s type).
+    pub fn ptr_target(&self, t: TypeId) -> Option<TypeId> {
+        match self.kind(t) {
+            TypeKind::Ptr(x) => Some(*x),
+            _ => None,
+        }
+    }
+
+    /// The element a pointer to `t` steps over: the innermost element of
+    /// an array type, else `t` itself. `POINTER TO ARRAY[0..99] OF BYTE`
+    /// and `POINTER TO BYTE` are one kind of pointer.
+    pub fn ptr_elem(&self, mut t: TypeId) -> TypeId {
+        while let TypeKind::Array { elem, .. } = self.kind(t) {
+            t = *elem;
+        }
+        t
+    }
+
+    /// The number of elements of [`TypeTable::ptr_elem`] in a value of
+    /// type `t` (1 for anything but an array).
+    pub fn elem_count(&self, mut t: TypeId) -> u64 {
+        let mut n: u64 = 1;
+        while let TypeKind::Array { dims, elem } = self.kind(t) {
+            for (lo, hi) in dims {
+                let k = u64::try_from((hi - lo + 1).max(0)).unwrap_or(u64::MAX);
+                n = n.saturating_mul(k);
+            }
+            t = *elem;
+        }
+        n
+    }
+
+    /// `SIZEOF` of a value of type `t`, in the byte view of memory that
+    /// pointers use, the same on every engine (docs/oop.md, "Pointers"):
+    /// scalars their natural size (TIME, DATE, TOD, DT 8 bytes), a
+    /// STRING(n) n + 1 bytes (its characters and the terminating NUL), a
+    /// WSTRING(n) 2(n + 1), an array its elements', a structure the sum
+    /// of its members' (no padding), a pointer 8. `None` for function
+    /// block instances, references and erroneous types (no byte view).
+    pub fn byte_size(&self, t: TypeId) -> Option<u64> {
+        self.byte_size_at(t, 0)
+    }
+
+    fn byte_size_at(&self, t: TypeId, depth: u32) -> Option<u64> {
+        if depth > 64 {
+            return None;
+        }
+        Some(match self.kind(t) {
+            TypeKind::String { wide, len } => (u64::from(*len) + 1) * if *wide { 2 } else { 1 },
+            TypeKind::Elem(_) | TypeKind::Subrange { .. } | TypeKind::Enum { .. } => {
+                elem_byte_size(self.scalar(t)?)
+            }
+            TypeKind::Array { elem, .. } => self
+                .elem_count(t)
+                .checked_mul(self.byte_size_at(self.ptr_elem(*elem), depth + 1)?)?,
+            TypeKind::Struct { fields } => {
+                let mut n: u64 = 0;
+                for f in fields {
+                    n = n.checked_add(self.byte_size_at(f.ty, depth + 1)?)?;
+                }
+                n
+            }
+            TypeKind::Ptr(_) => 8,
+            _ => return None,
+        })
     }
 
     /// The reference type to `t`, if the table has it.
@@ -284,6 +370,11 @@ impl TypeTable {
         self.interfaces.insert(p);
     }
 
+    /// Whether `p` is an INTERFACE.
+    pub fn is_interface(&self, p: crate::PouId) -> bool {
+        self.interfaces.contains(&p)
+    }
+
     /// The POUs `p` extends or implements directly.
     pub fn supers(&self, p: crate::PouId) -> &[crate::PouId] {
         self.supers.get(&p).map_or(&[], |v| v.as_slice())
@@ -349,6 +440,22 @@ impl TypeTable {
                 }
             }
             (TypeKind::Ref(_), _) | (_, TypeKind::Ref(_)) => Compat::Incompatible,
+            (TypeKind::Ptr(a), TypeKind::Ptr(b)) => {
+                // (`ADR(x)`, of `Ptr(VOID)`, is checked where it is stored.)
+                let (ea, eb) = (self.ptr_elem(*a), self.ptr_elem(*b));
+                let same = *a == TypeId::VOID
+                    || ea == eb
+                    || ea == TypeId::ERROR
+                    || eb == TypeId::ERROR
+                    || self.compat(ea, eb, false) == Compat::Same
+                        && self.compat(eb, ea, false) == Compat::Same;
+                if same {
+                    Compat::Same
+                } else {
+                    Compat::Incompatible
+                }
+            }
+            (TypeKind::Ptr(_), _) | (_, TypeKind::Ptr(_)) => Compat::Incompatible,
             _ => match (self.numeric(from), self.numeric(to)) {
                 (Some(a), Some(b)) if a == b => Compat::Same,
                 (Some(a), Some(b)) if stc_values::implicit_widening(a, b) => {
@@ -420,7 +527,22 @@ impl TypeTable {
                 self.display(*t, interner)
             }
             TypeKind::Ref(t) => format!("REF_TO {}", self.display(*t, interner)),
+            TypeKind::Ptr(TypeId::VOID) => "an address".into(),
+            TypeKind::Ptr(t) => format!("POINTER TO {}", self.display(*t, interner)),
         }
+    }
+}
+
+/// The size of an elementary type in the byte view of pointers.
+pub fn elem_byte_size(e: ElemType) -> u64 {
+    use ElemType as E;
+    match e {
+        E::Bool | E::Sint | E::Usint | E::Byte | E::Char => 1,
+        E::Int | E::Uint | E::Word | E::Wchar => 2,
+        E::Dint | E::Udint | E::Dword | E::Real => 4,
+        E::String => 1,
+        E::Wstring => 2,
+        _ => 8,
     }
 }
 

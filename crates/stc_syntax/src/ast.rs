@@ -375,6 +375,8 @@ pub enum TypeSpecKind {
     },
     /// `REF_TO T`: a reference to a variable of type `T` (3rd edition).
     Ref(Box<TypeSpec>),
+    /// `POINTER TO T`: a CODESYS pointer (docs/oop.md, "Pointers").
+    Pointer(Box<TypeSpec>),
 }
 
 #[derive(Clone, PartialEq, Debug)]

@@ -518,6 +518,7 @@ impl Dumper<'_> {
             }
             TypeSpecKind::Struct { members } => format!("STRUCT ({} members)", members.len()),
             TypeSpecKind::Ref(target) => format!("REF_TO {}", self.type_text(target)),
+            TypeSpecKind::Pointer(target) => format!("POINTER TO {}", self.type_text(target)),
         }
     }
 

@@ -569,6 +569,7 @@ impl Printer<'_> {
                 s
             }
             TypeSpecKind::Ref(target) => format!("REF_TO {}", self.type_text(target)),
+            TypeSpecKind::Pointer(target) => format!("POINTER TO {}", self.type_text(target)),
         }
     }
 

@@ -20,7 +20,7 @@ impl Gen<'_> {
         let m = self.m;
         self.define(ty);
         match m.types.kind(ty).clone() {
-            TypeKind::Ref(_) => self.line(format!("{lv} = NULL;")),
+            TypeKind::Ref(_) | TypeKind::Ptr(_) => self.line(format!("{lv} = NULL;")),
             TypeKind::Elem(_) | TypeKind::Subrange { .. } | TypeKind::Enum { .. } => {
                 let e = self.scalar(ty).unwrap_or(ElemType::Int);
                 let v = match init {

@@ -858,6 +858,7 @@ impl<'a> Gen<'a> {
             TypeKind::Struct { fields } => fields.iter().any(|f| self.init_writes(f.ty)),
             TypeKind::Error | TypeKind::Void => false,
             TypeKind::Ref(_)
+            | TypeKind::Ptr(_)
             | TypeKind::Elem(_)
             | TypeKind::String { .. }
             | TypeKind::Subrange { .. }
@@ -1224,6 +1225,13 @@ impl<'a> Gen<'a> {
             ExprKind::Convert(x) => {
                 let a = self.expr(x)?;
                 if m.types.kind(x.ty) == m.types.kind(e.ty) {
+                    return Ok(a);
+                }
+                // A reference seen as another (pointers, docs/oop.md): the
+                // same address.
+                if matches!(m.types.kind(x.ty), TypeKind::Ref(_))
+                    && matches!(m.types.kind(e.ty), TypeKind::Ref(_))
+                {
                     return Ok(a);
                 }
                 if let (Some((fw, _)), Some((tw, cap))) =

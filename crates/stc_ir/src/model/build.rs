@@ -320,7 +320,7 @@ impl<'a> Builder<'a> {
             // A reference's address is an engine's own: the model shows it
             // as an opaque value with no member (`{}` in reports), the same
             // on every engine.
-            TypeKind::Ref(_) => TypeDesc::Struct {
+            TypeKind::Ref(_) | TypeKind::Ptr(_) => TypeDesc::Struct {
                 name: Some(ref_name(self.m, t)),
                 fields: Vec::new(),
             },
@@ -464,7 +464,7 @@ impl<'a> Builder<'a> {
     ) {
         match self.m.types.kind(t).clone() {
             // A reference starts as NULL: the zero bytes already there.
-            TypeKind::Ref(_) => {}
+            TypeKind::Ref(_) | TypeKind::Ptr(_) => {}
             TypeKind::Elem(_)
             | TypeKind::Subrange { .. }
             | TypeKind::Enum { .. }

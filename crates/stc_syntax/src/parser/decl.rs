@@ -915,14 +915,17 @@ impl Parser<'_> {
                 TypeSpecKind::Generic(g)
             }
             TokenKind::Ident
-                if (self.at_word("POINTER") || self.at_word("REFERENCE"))
-                    && self.nth_kind(1) == TokenKind::Kw(Keyword::To) =>
+                if self.at_word("POINTER") && self.nth_kind(1) == TokenKind::Kw(Keyword::To) =>
             {
-                let what = if self.at_word("POINTER") {
-                    "`POINTER TO` (a CODESYS pointer) is"
-                } else {
-                    "`REFERENCE TO` (a CODESYS reference) is"
-                };
+                self.bump();
+                self.bump();
+                let target = self.type_spec();
+                TypeSpecKind::Pointer(Box::new(target))
+            }
+            TokenKind::Ident
+                if self.at_word("REFERENCE") && self.nth_kind(1) == TokenKind::Kw(Keyword::To) =>
+            {
+                let what = "`REFERENCE TO` (a CODESYS reference) is";
                 self.bump();
                 let to = self.bump();
                 self.unsupported(t.span().to(to.span()), what);

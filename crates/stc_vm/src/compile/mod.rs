@@ -1306,6 +1306,15 @@ impl<'a> Compiler<'a> {
                     }
                 }
             }
+            ExprKind::Convert(x)
+                if matches!(self.m.types.kind(x.ty), TypeKind::Ref(_))
+                    && matches!(self.m.types.kind(e.ty), TypeKind::Ref(_)) =>
+            {
+                // A reference seen as another (pointers): the same address.
+                let a = self.expr(x)?;
+                let size = self.size_of(e.ty);
+                self.mov(d, a, size);
+            }
             ExprKind::Convert(x) => {
                 let a = self.expr(x)?;
                 let (from, to) = (self.scalar(x.ty), self.scalar(e.ty));

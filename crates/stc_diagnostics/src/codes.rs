@@ -124,8 +124,8 @@ thousands of nested parentheses). Split the expression with intermediate
 variables.";
     E0030 Error "not supported yet"
 "The construct is valid in some IEC 61131-3 dialect but stc does not support
-it yet: PROPERTY, chart elements after ST statements, the CODESYS
-REFERENCE TO, UNION types, VAR_STAT/VAR_INST sections, variable-length arrays
+it yet: PROPERTY outside a function block, chart elements after ST
+statements, the CODESYS REFERENCE TO, UNION types, VAR_STAT/VAR_INST sections, variable-length arrays
 (`ARRAY[*]`, `ARRAY[..]`), the `__` operators of CODESYS and TwinCAT
 (`__TRY`, `__NEW`...) and logi.CAD UNIT files. The
 construct is reported once and skipped (or given an unknown type), and
@@ -616,6 +616,11 @@ function blocks or classes (the target a variable), and the instance could
 fit: one type extends or implements the other, or one is an interface.
 Use `:=` for other values.";
 
+    E1328 Error "property without that accessor"
+"A PROPERTY is read through its GET and written through its SET. This one
+has no GET (it can only be written) or no SET (it can only be read). Add
+the accessor to the PROPERTY, or use it the way it allows.";
+
     E1401 Error "ADR needs a variable"
 "`ADR(x)` is a pointer to the variable `x` (or a member or element of one,
 or what a pointer or reference points at). It needs a variable that is not
@@ -735,6 +740,16 @@ before the instance's first call it refers to nothing, and reading it is
 the run-time fault `NULL dereference`. Writing it from outside stays an
 error (E0104), and `--std iec2` refuses the read as well. Read the
 variable the call passes instead.";
+    W0116 Warning "shift of an integer"
+"SHL, SHR, ROL and ROR take a bit string (`IN`) and an integer number of
+bits (`N`). CODESYS also shifts integers and takes a bit string as `N`,
+and libraries such as OSCAT rely on it (`SHR(x, 1)` of an INT). stc
+accepts it with this warning: the integer's bits are shifted as the bit
+string of its width (INT as WORD, DINT as DWORD...) and the result is of
+the integer's type; SHR of a signed integer is an arithmetic shift (the
+sign bit fills in, as CODESYS does), SHL, ROL and ROR work on the bits.
+Convert explicitly (`WORD_TO_INT(SHR(INT_TO_WORD(x), 1))`) to follow the
+standard; `--std iec2` refuses the form.";
     W1201 Warning "step can never become active"
 "No sequence of transitions leads from the initial step to this step: it
 is never active and its actions never run by it. A step is reached when a

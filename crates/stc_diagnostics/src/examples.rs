@@ -3853,6 +3853,57 @@ END_PROGRAM
 ",
     ),
     (
+        Code::W0116,
+        r"PROGRAM Main
+VAR
+    x : INT := -8;
+    half : INT;
+END_VAR
+    half := SHR(x, 1); // W0116
+END_PROGRAM
+",
+        r"PROGRAM Main
+VAR
+    x : INT := -8;
+    half : INT;
+END_VAR
+    half := WORD_TO_INT(SHR(INT_TO_WORD(x), 1));
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1328,
+        r"FUNCTION_BLOCK Gauge
+VAR level : INT := 3; END_VAR
+PROPERTY Level2 : INT
+GET
+    Level2 := level * 2;
+END_GET
+END_PROPERTY
+END_FUNCTION_BLOCK
+
+PROGRAM Main
+VAR g : Gauge; x : INT; END_VAR
+    g.Level2 := 4; // E1328
+    x := g.Level2;
+END_PROGRAM
+",
+        r"FUNCTION_BLOCK Gauge
+VAR level : INT := 3; END_VAR
+PROPERTY Level2 : INT
+GET
+    Level2 := level * 2;
+END_GET
+END_PROPERTY
+END_FUNCTION_BLOCK
+
+PROGRAM Main
+VAR g : Gauge; x : INT; END_VAR
+    x := g.Level2;
+END_PROGRAM
+",
+    ),
+    (
         Code::E1401,
         r"PROGRAM Main
 VAR

@@ -99,6 +99,7 @@ pub fn lower(ast: &Ast, analysis: Analysis, interner: &Interner, sources: &Sourc
         })
         .collect();
     let mut pous = Vec::with_capacity(analysis.pous.len());
+    let mut helpers = pointers::Helpers::default();
     for (i, def) in analysis.pous.iter().enumerate() {
         // (Skipping one would shift the PouId of every later POU.)
         let Some(src) = analysis.pou_syntax(ast, PouId(i as u32)) else {
@@ -115,8 +116,30 @@ pub fn lower(ast: &Ast, analysis: Analysis, interner: &Interner, sources: &Sourc
             post: Vec::new(),
             writing: false,
             cr_vars: rustc_hash::FxHashMap::default(),
+            helpers: std::mem::take(&mut helpers),
         };
         pous.push(l.pou(def, src));
+        helpers = std::mem::take(&mut l.helpers);
+    }
+    // The functions pointer dereferences call (after every POU: their
+    // PouIds follow the analysis's).
+    for (i, (h, v)) in helpers.list().iter().enumerate() {
+        let name = stc_syntax::Symbol(names.len() as u32);
+        names.push(format!("POINTER_{}_{}", h.word(), i));
+        let mut l = Lowerer {
+            ast,
+            a: &analysis,
+            sources,
+            pou: PouId(0),
+            vars: IdVec::new(),
+            keeps: &keeps,
+            pending: Vec::new(),
+            post: Vec::new(),
+            writing: false,
+            cr_vars: rustc_hash::FxHashMap::default(),
+            helpers: pointers::Helpers::default(),
+        };
+        pous.push(l.ptr_helper(*h, *v, name));
     }
     let globals = analysis
         .globals
@@ -158,6 +181,8 @@ struct Lowerer<'a> {
     post: Vec<Stmt>,
     /// Lowering a place that the statement writes.
     writing: bool,
+    /// The pointer helper functions the POUs lowered so far call.
+    helpers: pointers::Helpers,
     /// In an Instruction List body: the hidden variable of the current
     /// result for each type it takes.
     cr_vars: rustc_hash::FxHashMap<TypeId, VarId>,
@@ -361,6 +386,21 @@ impl<'a> Lowerer<'a> {
                 let mut stmts = self.assignment_attempt(*target, *value, s.span);
                 out.append(&mut self.pending);
                 out.append(&mut stmts);
+            }
+            SK::Assign { target, value }
+                if matches!(
+                    self.a.calls.get(target).map(|c| &c.target),
+                    Some(CallTarget::Method { .. })
+                ) =>
+            {
+                // `inst.p := v`: the property's SET (docs/oop.md).
+                let x = self.call_expr(*target, TypeId::VOID);
+                out.append(&mut self.pending);
+                // (A virtual call is all in the pending statements.)
+                if !matches!(x.kind, ExprKind::Const(_)) {
+                    out.push(at(self, StmtKind::Eval(x)));
+                }
+                out.append(&mut self.post);
             }
             SK::Assign { target, value } => {
                 self.writing = true;
@@ -1260,6 +1300,10 @@ impl<'a> Lowerer<'a> {
                 ExprKind::Binary(bin_op(*op), Box::new(l), Box::new(r))
             }
             AK::Call { .. } => return self.call_expr(e, ty),
+            // A property read: its GET.
+            AK::Name(_) | AK::Member { .. } if self.a.calls.contains_key(&e) => {
+                return self.call_expr(e, ty)
+            }
             AK::Name(_)
             | AK::Member { .. }
             | AK::Index { .. }
@@ -1354,6 +1398,13 @@ impl<'a> Lowerer<'a> {
     /// conversions become conversions.
     fn intrinsic(&mut self, f: Intrinsic, mut args: Vec<Expr>, ty: TypeId) -> Expr {
         let bool_ty = self.bool_ty();
+        if matches!(
+            f,
+            Intrinsic::Shl | Intrinsic::Shr | Intrinsic::Rol | Intrinsic::Ror
+        ) && args.len() == 2
+        {
+            return self.shift(f, args, ty);
+        }
         let op = match f {
             Intrinsic::Add => Some(BinOp::Add),
             Intrinsic::Sub => Some(BinOp::Sub),
@@ -1423,6 +1474,116 @@ impl<'a> Lowerer<'a> {
         }
     }
 
+    /// SHL, SHR, ROL, ROR; of an integer (W0116) on the bit string of its
+    /// width, SHR of a signed one arithmetic (`NOT SHR(NOT x, n)` when it
+    /// is negative); a bit-string N as the unsigned integer of its width.
+    fn shift(&mut self, f: Intrinsic, mut args: Vec<Expr>, ty: TypeId) -> Expr {
+        use stc_values::{is_bit_string, is_integer, is_signed};
+        let bits_of = |size: u32| match size {
+            1 => ElemType::Byte,
+            2 => ElemType::Word,
+            4 => ElemType::Dword,
+            _ => ElemType::Lword,
+        };
+        let unsigned_of = |size: u32| match size {
+            1 => ElemType::Usint,
+            2 => ElemType::Uint,
+            4 => ElemType::Udint,
+            _ => ElemType::Ulint,
+        };
+        let convert = |x: Expr, to: TypeId| Expr {
+            kind: ExprKind::Convert(Box::new(x)),
+            ty: to,
+        };
+        let n = args.pop().unwrap_or(Expr {
+            kind: ExprKind::Const(Value::Int(0)),
+            ty,
+        });
+        let x = args.pop().unwrap_or(Expr {
+            kind: ExprKind::Const(Value::Int(0)),
+            ty,
+        });
+        let n = match self.a.types.scalar(n.ty) {
+            Some(s) if is_bit_string(s) && s != ElemType::Bool => {
+                let to = self.elem_ty(unsigned_of(crate::layout::elem_size(s)));
+                convert(n, to)
+            }
+            _ => n,
+        };
+        let Some(s) = self.a.types.scalar(x.ty).filter(|s| is_integer(*s)) else {
+            return Expr {
+                kind: ExprKind::Intrinsic {
+                    func: f,
+                    args: vec![x, n],
+                },
+                ty,
+            };
+        };
+        let b = self.elem_ty(bits_of(crate::layout::elem_size(s)));
+        let int_ty = x.ty;
+        let shift = |x: Expr, n: Expr| Expr {
+            kind: ExprKind::Intrinsic {
+                func: f,
+                args: vec![x, n],
+            },
+            ty: b,
+        };
+        let not = |x: Expr| Expr {
+            kind: ExprKind::Unary(UnOp::Not, Box::new(x)),
+            ty: b,
+        };
+        let bits = if f == Intrinsic::Shr && is_signed(s) {
+            // (x and n are read twice: they are spilled when not plain.)
+            let mut done = [x, n];
+            for v in done.iter_mut() {
+                if !matches!(v.kind, ExprKind::Const(_) | ExprKind::Load(_)) {
+                    let name = self.a.pou(self.pou).name;
+                    let span = self.a.pou(self.pou).span;
+                    let t = self.hidden(name, "shift", v.ty, Storage::Frame, span);
+                    let value = std::mem::replace(
+                        v,
+                        Expr {
+                            kind: ExprKind::Load(self.var_place(t, v.ty)),
+                            ty: v.ty,
+                        },
+                    );
+                    self.pending.push(Stmt {
+                        kind: StmtKind::Assign {
+                            place: self.var_place(t, value.ty),
+                            value,
+                        },
+                        line: 0,
+                        col: 0,
+                    });
+                }
+            }
+            let [x, n] = done;
+            let negative = Expr {
+                kind: ExprKind::Binary(
+                    BinOp::Lt,
+                    Box::new(x.clone()),
+                    Box::new(Expr {
+                        kind: ExprKind::Const(Value::Int(0)),
+                        ty: int_ty,
+                    }),
+                ),
+                ty: self.bool_ty(),
+            };
+            let plain = shift(convert(x.clone(), b), n.clone());
+            let filled = not(shift(not(convert(x, b)), n));
+            Expr {
+                kind: ExprKind::Intrinsic {
+                    func: Intrinsic::Sel,
+                    args: vec![negative, plain, filled],
+                },
+                ty: b,
+            }
+        } else {
+            shift(convert(x, b), n)
+        };
+        convert(bits, ty)
+    }
+
     /// Whether an expression is `THIS` (in parentheses or not).
     fn is_this(&self, e: ExprId) -> bool {
         match &self.ast.expr(e).kind {
@@ -1459,6 +1620,25 @@ impl<'a> Lowerer<'a> {
         let ty = self.a.expr_type(e);
         if let Some((p, indices)) = self.ptr_deref_parts(e) {
             return self.ptr_deref(e, p, indices, ty);
+        }
+        if matches!(self.ast.expr(e).kind, AK::Name(_) | AK::Member { .. })
+            && self.a.calls.contains_key(&e)
+        {
+            // A property read where a variable could stand: its value in
+            // a temporary.
+            let x = self.call_expr(e, ty);
+            let name = self.a.pou(self.pou).name;
+            let span = self.ast.expr(e).span;
+            let t = self.hidden(name, "property", ty, Storage::Frame, span);
+            let set = self.stmt_at(
+                span,
+                StmtKind::Assign {
+                    place: self.var_place(t, ty),
+                    value: x,
+                },
+            );
+            self.pending.push(set);
+            return self.var_place(t, ty);
         }
         match &self.ast.expr(e).kind {
             AK::Paren(i) => self.place(*i),

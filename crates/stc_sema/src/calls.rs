@@ -322,7 +322,7 @@ impl<'a> Sema<'a> {
     /// A call of METHOD `m` on the instance `this` (the running one for
     /// `None`).
     #[allow(clippy::too_many_arguments)]
-    fn method_call(
+    pub(crate) fn method_call(
         &mut self,
         e: ExprId,
         m: PouId,
@@ -1027,6 +1027,50 @@ impl<'a> Sema<'a> {
         dint
     }
 
+    /// W0116: SHL, SHR, ROL or ROR of an integer (`IN`), or by a bit
+    /// string (`N`), as CODESYS allows: the integer's bits are shifted
+    /// (SHR of a signed integer is arithmetic, its sign fills in; the
+    /// lowering converts to the bit string of the same width and back).
+    fn shift_of_integer(
+        &mut self,
+        f: &StdFunction,
+        fam: GenericType,
+        t: TypeId,
+        v: ExprId,
+    ) -> bool {
+        use stc_values::Intrinsic as I;
+        if self.opts.iec2 || !matches!(f.intrinsic, I::Shl | I::Shr | I::Rol | I::Ror) {
+            return false;
+        }
+        let Some(s) = self.types.numeric(t) else {
+            return false;
+        };
+        let (ok, what) = match fam {
+            GenericType::AnyBit => (
+                stc_values::is_integer(s),
+                "an integer shifted as the bits of its type",
+            ),
+            GenericType::AnyInt => (
+                stc_values::is_bit_string(s) && s != ElemType::Bool,
+                "a bit string used as the number of bits",
+            ),
+            _ => (false, ""),
+        };
+        if ok {
+            let shown = self.tname(t);
+            self.emit(
+                Diagnostic::new(
+                    Code::W0116,
+                    self.ast.expr(v).span,
+                    format!("`{}` of {shown}: {what}, as CODESYS allows", f.name),
+                )
+                .with_label(format!("this is {shown}"))
+                .with_help("the standard shifts bit strings by an integer: convert with INT_TO_WORD(...) and back"),
+            );
+        }
+        ok
+    }
+
     /// Binds the type variables of a signature and checks every argument.
     fn generic_call(
         &mut self,
@@ -1066,7 +1110,7 @@ impl<'a> Sema<'a> {
                     continue;
                 }
                 if let TyPat::Var(k, fam) = pats[i] {
-                    if !self.type_in_family(t, fam) {
+                    if !self.type_in_family(t, fam) && !self.shift_of_integer(f, fam, t, v) {
                         let msg = format!(
                             "parameter {} of `{}` must be {}, not {}",
                             param_name(f, i),

@@ -49,7 +49,11 @@ impl<'a> Sema<'a> {
                     .with_label(format!("the standard {kind} `{shown}` is already declared"))
                     .with_help("give this declaration another name"),
                 );
-                return false;
+                // The name is the standard one's: the user's declaration
+                // is dropped, and the standard library (whose charts call
+                // TON) keeps its own.
+                self.names.insert(name.sym, what);
+                return true;
             }
             let shown = self.spelled(name.sym, name.span);
             let mut d = Diagnostic::new(

@@ -827,6 +827,12 @@ impl<'a> Sema<'a> {
                 if let Some(t) = self.instance_name(e, id, p) {
                     return t;
                 }
+                // A property of the running instance, by its bare name.
+                if let Some(fb) = self.own_instance(p) {
+                    if let Some(t) = self.property_read(e, fb, None, id, scope) {
+                        return t;
+                    }
+                }
                 if self.in_type_constant {
                     let top = self.globals.iter().position(|g| {
                         g.var.name == id.sym
@@ -1173,6 +1179,11 @@ impl<'a> Sema<'a> {
             },
             TypeKind::Fb(p) | TypeKind::Program(p) => {
                 self.resolve_pou(p);
+                if self.pous[p.0 as usize].lookup(member.sym).is_none() {
+                    if let Some(t) = self.property_read(e, p, Some(base), member, scope) {
+                        return t;
+                    }
+                }
                 let pou = &self.pous[p.0 as usize];
                 match pou.lookup(member.sym) {
                     Some(v) if matches!(pou.var(v).section, Section::Input | Section::Output) => {
@@ -1556,7 +1567,7 @@ impl<'a> Sema<'a> {
         let lptr = matches!(self.types.kind(lt), TypeKind::Ptr(_));
         let rptr = matches!(self.types.kind(rt), TypeKind::Ptr(_));
         if lptr || rptr {
-            return self.ptr_binary(e, op, (l, lt), (r, rt), span);
+            return self.ptr_binary(op, (l, lt), (r, rt), span);
         }
         let lref = matches!(self.types.kind(lt), TypeKind::Ref(_));
         let rref = matches!(self.types.kind(rt), TypeKind::Ref(_));

@@ -26,6 +26,7 @@ pub use pointers::byte_like;
 mod il;
 mod pointers;
 pub mod prelude;
+mod properties;
 mod sfc;
 mod stmt;
 #[cfg(test)]

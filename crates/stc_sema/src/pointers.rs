@@ -519,7 +519,6 @@ impl Sema<'_> {
     /// DINT), and comparisons of two pointers or of a pointer with `0`.
     pub(crate) fn ptr_binary(
         &mut self,
-        e: ExprId,
         op: BinaryOp,
         (l, lt): (ExprId, TypeId),
         (r, rt): (ExprId, TypeId),

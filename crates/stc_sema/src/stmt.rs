@@ -72,6 +72,13 @@ impl<'a> Sema<'a> {
             StmtKind::AssignAttempt { target, value } => {
                 self.assign_attempt(*target, *value, p);
             }
+            StmtKind::Assign { target, value }
+                if self.property_write(*target, *value, scope).is_some() =>
+            {
+                // `inst.p := v`: a call of the property's SET.
+                self.forget_writes_in(*target, p);
+                self.forget_writes_in(*value, p);
+            }
             StmtKind::Assign { target, value } => {
                 let tt = self.check_lvalue(*target, scope, Write::Assign);
                 let vt = self.check_expr(*value, Some(tt), scope);

@@ -665,6 +665,20 @@ pub struct Method {
     /// END_ACTION`): a method with no variables, no result and no
     /// modifiers, written after the body.
     pub is_action: bool,
+    /// A part of a PROPERTY (`PROPERTY name : T GET ... END_GET SET ...
+    /// END_SET END_PROPERTY`, docs/oop.md): the getter is a method named
+    /// like the property returning `T`; the setter a method named
+    /// `name.SET` (a name no one can write) whose first variable block is
+    /// the VAR_INPUT `name : T` the parser adds. `property` is the
+    /// property's name as written.
+    pub property: Option<(PropertyPart, Ident)>,
+}
+
+/// Which accessor of a PROPERTY a [`Method`] is.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum PropertyPart {
+    Get,
+    Set,
 }
 
 impl Method {

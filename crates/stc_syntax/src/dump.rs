@@ -145,7 +145,12 @@ impl Dumper<'_> {
                 d.var_block(b);
             }
             for m in &p.methods {
-                let word = if m.is_action { "Action" } else { "Method" };
+                let word = match m.property {
+                    Some((crate::ast::PropertyPart::Get, _)) => "PropertyGet",
+                    Some((crate::ast::PropertyPart::Set, _)) => "PropertySet",
+                    None if m.is_action => "Action",
+                    None => "Method",
+                };
                 let mut head = format!("{word}{} {}", m.modifiers(), d.name(m.pou.name));
                 if let Some(r) = &m.pou.return_type {
                     let _ = write!(head, " : {}", d.type_text(r));

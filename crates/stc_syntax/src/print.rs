@@ -166,8 +166,28 @@ impl Printer<'_> {
             for b in &pou.var_blocks[..shown] {
                 p.var_block(b);
             }
-            for m in pou.methods.iter().filter(|m| !m.is_action) {
-                p.method(m);
+            let members: Vec<&crate::ast::Method> =
+                pou.methods.iter().filter(|m| !m.is_action).collect();
+            let mut i = 0;
+            while i < members.len() {
+                let m = members[i];
+                match m.property {
+                    Some((_, name)) => {
+                        // The accessors of one property, written together.
+                        let mut j = i + 1;
+                        while j < members.len()
+                            && members[j].property.is_some_and(|(_, n)| n.sym == name.sym)
+                        {
+                            j += 1;
+                        }
+                        p.property(&members[i..j]);
+                        i = j;
+                    }
+                    None => {
+                        p.method(m);
+                        i += 1;
+                    }
+                }
             }
             if let Some(sfc) = &pou.sfc {
                 p.sfc(sfc);
@@ -227,6 +247,43 @@ impl Printer<'_> {
                 }
             }
         }
+    }
+
+    /// A PROPERTY from its accessors (see `ast::Method::property`).
+    fn property(&mut self, parts: &[&crate::ast::Method]) {
+        let Some(first) = parts.first() else {
+            return;
+        };
+        let Some((_, name)) = first.property else {
+            return;
+        };
+        let ty = first.pou.return_type.as_ref().or_else(|| {
+            first.pou.var_blocks.first().and_then(|b| match &b.items {
+                VarBlockItems::Vars(vs) => vs.first().map(|v| &v.ty),
+                _ => None,
+            })
+        });
+        let mut head = format!("PROPERTY{} {}", first.modifiers(), self.name(name));
+        if let Some(t) = ty {
+            let _ = write!(head, " : {}", self.type_text(t));
+        }
+        self.line(&head);
+        self.nested(|p| {
+            for m in parts {
+                let set = matches!(m.property, Some((crate::ast::PropertyPart::Set, _)));
+                p.line(if set { "SET" } else { "GET" });
+                p.nested(|p| {
+                    // (The setter's first block is the value, written by
+                    // the PROPERTY line.)
+                    for b in &m.pou.var_blocks[usize::from(set).min(m.pou.var_blocks.len())..] {
+                        p.var_block(b);
+                    }
+                    p.stmts(&m.pou.body);
+                });
+                p.line(if set { "END_SET" } else { "END_GET" });
+            }
+        });
+        self.line("END_PROPERTY");
     }
 
     fn method(&mut self, m: &crate::ast::Method) {

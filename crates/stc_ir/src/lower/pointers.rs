@@ -9,16 +9,19 @@
 //! - `p + n`, `p - n` copy `p` and move the offset; `p - q` and the
 //!   comparisons check that both point into one object (else the fault
 //!   `pointer out of bounds`) and compare offsets.
-//! - `p^` (and `p^[i]`, which is `(p + i * SIZEOF(element))^`) is a
-//!   `SWITCH` on the object kind over the kinds the pointer's type can
-//!   see: each arm checks the offset against its object (whole elements,
-//!   inside it) and sets a reference to the element, through which the
-//!   statement then reads or writes. A kind that is a STRING seen through
-//!   a pointer to BYTE (USINT, CHAR) reads its characters and a NUL, and a
-//!   write changes the string (a NUL ends it) after the statement.
-//!   NULL is the fault `NULL dereference`; any other kind, or an offset
-//!   outside the object, `pointer out of bounds`. Each dereference is
-//!   checked before the statement's other operations.
+//! - `p^` (and `p^[i]`, which is `(p + i * SIZEOF(element))^`) calls a
+//!   helper FUNCTION, one per element type (`Helpers`, built after every
+//!   POU by `ptr_helper`): a `SWITCH` on the object kind over the kinds
+//!   that type can see, each arm checking the offset against its object
+//!   (whole elements, inside it) and giving a reference to the element,
+//!   through which the statement reads or writes. A kind that is a STRING
+//!   seen through a pointer to BYTE (USINT, CHAR) reads its characters and
+//!   a NUL (the GET helper), and a write changes the string (the SET
+//!   helper, after the statement: a NUL inside it ends it there). A helper
+//!   never faults: it returns a status (1 NULL, 2 outside the object) and
+//!   the caller raises `NULL dereference` or `pointer out of bounds` at the
+//!   `^`. Each dereference is checked before the statement's other
+//!   operations.
 
 use stc_diagnostics::Span;
 use stc_sema::{BoundArgKind, PtrInfo, TypeId, TypeKind};
@@ -28,6 +31,49 @@ use stc_values::{BinOp, Intrinsic, UnOp, Value};
 
 use super::Lowerer;
 use crate::{Expr, ExprKind, FaultKind, Place, Proj, Root, Stmt, StmtKind, Storage, SwitchArm};
+
+/// Which helper function (see [`Lowerer::ptr_helper`]).
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub(super) enum Helper {
+    Ref,
+    Get,
+    Set,
+}
+
+impl Helper {
+    pub(super) fn word(self) -> &'static str {
+        match self {
+            Helper::Ref => "REF",
+            Helper::Get => "GET",
+            Helper::Set => "SET",
+        }
+    }
+}
+
+/// The helper functions the lowered POUs call, by kind and element type:
+/// each becomes one FUNCTION after the analysis's POUs.
+#[derive(Default)]
+pub(super) struct Helpers {
+    list: Vec<(Helper, TypeId)>,
+}
+
+impl Helpers {
+    pub(super) fn list(&self) -> &[(Helper, TypeId)] {
+        &self.list
+    }
+
+    /// The PouId of a helper (`first`: the number of the analysis's POUs).
+    fn get(&mut self, h: Helper, v: TypeId, first: usize) -> crate::PouId {
+        let i = match self.list.iter().position(|x| *x == (h, v)) {
+            Some(i) => i,
+            None => {
+                self.list.push((h, v));
+                self.list.len() - 1
+            }
+        };
+        crate::PouId((first + i) as u32)
+    }
+}
 
 const OBJECT: u32 = 0;
 const BASE: u32 = 1;
@@ -382,9 +428,11 @@ impl<'a> Lowerer<'a> {
         }
     }
 
-    /// The place of `p^` or `p^[i..]` (node `e`, of type `ty`): checked,
-    /// then a reference to the element; for a STRING's byte, a temporary
-    /// (written back after the statement when `write`).
+    /// The place of `p^` or `p^[i..]` (node `e`, of type `ty`): the call
+    /// of the helper that checks the pointer and gives the reference to
+    /// the element, faulting here on its status; for a byte that may be a
+    /// STRING's, the helper's value in a temporary (written back through
+    /// the SET helper after the statement when it is written).
     pub(super) fn ptr_deref(
         &mut self,
         e: ExprId,
@@ -395,7 +443,6 @@ impl<'a> Lowerer<'a> {
         let write = std::mem::replace(&mut self.writing, false);
         let info = self.ptrs();
         let dint = info.dint;
-        let bool_ty = self.bool_ty();
         let span = self.ast.expr(e).span;
         // The fault names the `^` (of `p^`, or of `p^[i]`'s base).
         let hat = match &self.ast.expr(e).kind {
@@ -405,7 +452,6 @@ impl<'a> Lowerer<'a> {
         let at = self.line_col(Span::new(hat.saturating_sub(1), hat));
         let x = self.expr(p);
         let mut t = self.ptr_in_temp(x, at);
-        let v = ty;
         if let Some(indices) = indices {
             // `p^[i, j]`: `p` moved by the element's offset in the array.
             let target = self.a.expr_type(match &self.ast.expr(e).kind {
@@ -416,7 +462,7 @@ impl<'a> Lowerer<'a> {
                 TypeKind::Array { dims, .. } => dims.clone(),
                 _ => Vec::new(),
             };
-            let esize = self.a.types.byte_size(v).unwrap_or(1) as i128;
+            let esize = self.a.types.byte_size(ty).unwrap_or(1) as i128;
             let values = self.seq(&indices);
             let mut off = self.konst(dint, 0);
             let mut stride: i128 = 1;
@@ -438,20 +484,165 @@ impl<'a> Lowerer<'a> {
             self.pending.extend([copy, set]);
             t = moved;
         }
-        let elem = self.a.types.ptr_elem(v);
-        let same = |s: &Self, k: TypeId| {
-            k == elem
-                || s.a.types.compat(k, elem, false) == stc_sema::Compat::Same
-                    && s.a.types.compat(elem, k, false) == stc_sema::Compat::Same
-                    && s.a.types.scalar(k) == s.a.types.scalar(elem)
+        let elem = self.a.types.ptr_elem(ty);
+        let strings =
+            stc_sema::byte_like(&self.a.types, elem) && info.kinds.iter().any(|k| k.string);
+        let status = self.ptr_temp("status", dint);
+        let ptr = self.load(self.var_place(t, info.ptr));
+        if strings {
+            let get = self.helpers.get(Helper::Get, elem, self.a.pous.len());
+            let val = self.ptr_temp("byte", elem);
+            let call = self.helper_call(get, vec![ptr], status, elem);
+            let s = self.assign(at, self.var_place(val, elem), call);
+            self.pending.push(s);
+            let check = self.status_check(status, at);
+            self.pending.push(check);
+            if write {
+                // The byte written, after the statement.
+                let set = self.helpers.get(Helper::Set, elem, self.a.pous.len());
+                let args = vec![
+                    self.load(self.var_place(t, info.ptr)),
+                    self.load(self.var_place(val, elem)),
+                ];
+                let call = self.helper_call(set, args, status, TypeId::VOID);
+                let s = Stmt {
+                    kind: StmtKind::Eval(call),
+                    line: at.0,
+                    col: at.1,
+                };
+                let check = self.status_check(status, at);
+                self.post.extend([s, check]);
+            }
+            return self.var_place(val, elem);
+        }
+        let Some(&rt) = info.elem_refs.get(&elem) else {
+            // (No pointer type sees this element: nothing points here.)
+            let v = self.ptr_temp("byte", ty);
+            return self.var_place(v, ty);
         };
-        let bytes = stc_sema::byte_like(&self.a.types, elem);
-        let strings = bytes && info.kinds.iter().any(|k| k.string);
-        let elem_ref = info.elem_refs.get(&elem).copied();
-        // The reference to the element (or, for strings, the value).
-        let r = elem_ref.map(|rt| self.ptr_temp("element", rt));
-        let val = strings.then(|| self.ptr_temp("byte", elem));
-        let off = || self.load(self.field(t, OFFSET));
+        let get = self.helpers.get(Helper::Ref, elem, self.a.pous.len());
+        let r = self.ptr_temp("element", rt);
+        let call = self.helper_call(get, vec![ptr], status, rt);
+        let s = self.assign(at, self.var_place(r, rt), call);
+        self.pending.push(s);
+        let check = self.status_check(status, at);
+        self.pending.push(check);
+        Place {
+            root: Root::Deref(Box::new(self.load(self.var_place(r, rt)))),
+            proj: vec![],
+            ty,
+        }
+    }
+
+    /// A call of helper `f` with its inputs in order, its status output
+    /// into `status`.
+    fn helper_call(
+        &self,
+        f: crate::PouId,
+        args: Vec<Expr>,
+        status: crate::VarId,
+        ty: TypeId,
+    ) -> Expr {
+        let dint = self.ptrs().dint;
+        // (The helper's variables: its result (when it has one), the
+        // inputs, then the status.)
+        let first = u32::from(ty != TypeId::VOID);
+        let n = args.len() as u32;
+        Expr {
+            kind: ExprKind::CallFn {
+                func: f,
+                inputs: args
+                    .into_iter()
+                    .enumerate()
+                    .map(|(i, a)| (crate::VarId(first + i as u32), a))
+                    .collect(),
+                inouts: Vec::new(),
+                outputs: vec![crate::Output {
+                    var: crate::VarId(first + n),
+                    target: self.var_place(status, dint),
+                    negated: false,
+                }],
+            },
+            ty,
+        }
+    }
+
+    /// The fault a helper's status stands for, raised at `at`.
+    fn status_check(&self, status: crate::VarId, at: (u32, u32)) -> Stmt {
+        let dint = self.ptrs().dint;
+        Stmt {
+            kind: StmtKind::Switch {
+                selector: self.load(self.var_place(status, dint)),
+                arms: vec![
+                    SwitchArm {
+                        ranges: vec![(1, 1)],
+                        body: vec![self.fault(at, FaultKind::NullReference)],
+                    },
+                    SwitchArm {
+                        ranges: vec![(2, 2)],
+                        body: vec![self.fault(at, FaultKind::PointerBounds)],
+                    },
+                ],
+                default: Vec::new(),
+            },
+            line: at.0,
+            col: at.1,
+        }
+    }
+
+    /// The body of a pointer helper function for element type `v`:
+    /// `Ref` returns the reference to the element `p` points at, `Get`
+    /// its value (a STRING's byte too), `Set` writes `value` there; each
+    /// sets `status` to 0, 1 (NULL) or 2 (out of bounds) and never
+    /// faults itself (the caller faults, at the dereference).
+    pub(super) fn ptr_helper(
+        &mut self,
+        h: Helper,
+        v: TypeId,
+        name: stc_syntax::Symbol,
+    ) -> crate::Pou {
+        use stc_sema::Section;
+        let info = self.ptrs();
+        let dint = info.dint;
+        let bool_ty = self.bool_ty();
+        let rt = info.elem_refs.get(&v).copied().unwrap_or(TypeId::ERROR);
+        let var = |l: &mut Self, role: &'static str, ty: TypeId, section: Section| {
+            let id = crate::VarId(l.vars.len() as u32);
+            l.vars.push(crate::Var {
+                name,
+                ty,
+                section,
+                storage: Storage::Frame,
+                init: None,
+                constant: false,
+                retain: false,
+                location: None,
+                hidden: Some(role),
+                span: Span::default(),
+            });
+            id
+        };
+        let result = match h {
+            Helper::Ref => Some(var(self, "result", rt, Section::Result)),
+            Helper::Get => Some(var(self, "result", v, Section::Result)),
+            Helper::Set => None,
+        };
+        let t = var(self, "pointer", info.ptr, Section::Input);
+        let value = (h == Helper::Set).then(|| var(self, "value", v, Section::Input));
+        let status = var(self, "status", dint, Section::Output);
+        let at = (0, 0);
+        let set_status =
+            |l: &Self, n: i128| l.assign(at, l.var_place(status, dint), l.konst(dint, n));
+        let off = |l: &Self| l.load(l.field(t, OFFSET));
+        let if_ = |cond: Expr, then_body: Vec<Stmt>, else_body: Vec<Stmt>| Stmt {
+            kind: StmtKind::If {
+                cond,
+                then_body,
+                else_body,
+            },
+            line: 0,
+            col: 0,
+        };
         let mut arms = Vec::new();
         for (i, k) in info.kinds.iter().enumerate() {
             let obj = Expr {
@@ -463,21 +654,21 @@ impl<'a> Lowerer<'a> {
                 proj: vec![],
                 ty: k.obj,
             };
-            let mut body = Vec::new();
-            if same(self, k.elem) {
-                let (Some(r), Some(rt)) = (r, elem_ref) else {
-                    continue;
-                };
+            let same = k.elem == v
+                || self.a.types.compat(k.elem, v, false) == stc_sema::Compat::Same
+                    && self.a.types.compat(v, k.elem, false) == stc_sema::Compat::Same
+                    && self.a.types.scalar(k.elem) == self.a.types.scalar(v);
+            let body = if same {
                 // Whole elements inside the object.
                 let size = k.elem_size as i128;
                 let inside = self.bin(
                     BinOp::And,
                     self.bin(
                         BinOp::And,
-                        self.bin(BinOp::Ge, off(), self.konst(dint, 0), bool_ty),
+                        self.bin(BinOp::Ge, off(self), self.konst(dint, 0), bool_ty),
                         self.bin(
                             BinOp::Lt,
-                            off(),
+                            off(self),
                             self.konst(dint, k.count as i128 * size),
                             bool_ty,
                         ),
@@ -485,100 +676,48 @@ impl<'a> Lowerer<'a> {
                     ),
                     self.bin(
                         BinOp::Eq,
-                        self.bin(BinOp::Mod, off(), self.konst(dint, size), dint),
+                        self.bin(BinOp::Mod, off(self), self.konst(dint, size), dint),
                         self.konst(dint, 0),
                         bool_ty,
                     ),
                     bool_ty,
                 );
-                body.push(Stmt {
-                    kind: StmtKind::If {
-                        cond: inside,
-                        then_body: Vec::new(),
-                        else_body: vec![self.fault(at, FaultKind::PointerBounds)],
-                    },
-                    line: at.0,
-                    col: at.1,
-                });
-                let index = self.bin(BinOp::Div, off(), self.konst(dint, size), dint);
+                let index = self.bin(BinOp::Div, off(self), self.konst(dint, size), dint);
                 let elem_place = self.element_of(obj_place, k.obj, index);
-                let set = self.assign(
-                    at,
-                    self.var_place(r, rt),
-                    Expr {
-                        kind: ExprKind::Ref(elem_place),
-                        ty: rt,
-                    },
-                );
-                body.push(set);
-                if let Some(val) = val {
-                    let read = self.load(Place {
-                        root: Root::Deref(Box::new(self.load(self.var_place(r, rt)))),
-                        proj: vec![],
-                        ty: elem,
-                    });
-                    body.push(self.assign(at, self.var_place(val, elem), read));
-                }
-            } else if k.string && strings {
-                let Some(val) = val else { continue };
-                // A STRING(n): n + 1 bytes, its characters then NULs.
-                let cap = self.a.types.byte_size(k.obj).unwrap_or(1) as i128;
-                let inside = self.bin(
-                    BinOp::And,
-                    self.bin(BinOp::Ge, off(), self.konst(dint, 0), bool_ty),
-                    self.bin(BinOp::Lt, off(), self.konst(dint, cap), bool_ty),
-                    bool_ty,
-                );
-                body.push(Stmt {
-                    kind: StmtKind::If {
-                        cond: inside,
-                        then_body: Vec::new(),
-                        else_body: vec![self.fault(at, FaultKind::PointerBounds)],
-                    },
-                    line: at.0,
-                    col: at.1,
-                });
-                let s = self.load(obj_place.clone());
-                let len = self.std_fn(Intrinsic::Len, vec![s.clone()], dint);
-                let pos = self.bin(BinOp::Add, off(), self.konst(dint, 1), dint);
-                let one = self.std_fn(Intrinsic::Mid, vec![s, self.konst(dint, 1), pos], k.obj);
-                let ch = self.std_fn(
-                    Intrinsic::Convert {
-                        from: ElemType::String,
-                        to: ElemType::Char,
-                    },
-                    vec![one],
-                    info.char_ty,
-                );
-                let b = if self.a.types.scalar(elem) == Some(ElemType::Char) {
-                    ch
-                } else {
-                    let to = self.a.types.scalar(elem).unwrap_or(ElemType::Byte);
-                    self.std_fn(
-                        Intrinsic::Convert {
-                            from: ElemType::Char,
-                            to,
+                let action = match h {
+                    Helper::Ref => self.assign(
+                        at,
+                        self.var_place(result.unwrap_or(status), rt),
+                        Expr {
+                            kind: ExprKind::Ref(elem_place),
+                            ty: rt,
                         },
-                        vec![ch],
-                        elem,
-                    )
+                    ),
+                    Helper::Get => self.assign(
+                        at,
+                        self.var_place(result.unwrap_or(status), v),
+                        self.load(elem_place),
+                    ),
+                    Helper::Set => self.assign(
+                        at,
+                        elem_place,
+                        self.load(self.var_place(value.unwrap_or(status), v)),
+                    ),
                 };
-                body.push(Stmt {
-                    kind: StmtKind::If {
-                        cond: self.bin(BinOp::Lt, off(), len, bool_ty),
-                        then_body: vec![self.assign(at, self.var_place(val, elem), b)],
-                        else_body: vec![self.assign(
-                            at,
-                            self.var_place(val, elem),
-                            self.konst(elem, 0),
-                        )],
-                    },
-                    line: at.0,
-                    col: at.1,
-                });
+                vec![if_(inside, vec![action], vec![set_status(self, 2)])]
+            } else if k.string && h != Helper::Ref && stc_sema::byte_like(&self.a.types, v) {
+                self.string_byte(
+                    h,
+                    k,
+                    obj_place,
+                    t,
+                    result.or(value).unwrap_or(status),
+                    v,
+                    status,
+                )
             } else {
                 continue;
-            }
+            };
             arms.push(SwitchArm {
                 ranges: vec![(i as i128 + 1, i as i128 + 1)],
                 body,
@@ -586,153 +725,157 @@ impl<'a> Lowerer<'a> {
         }
         arms.push(SwitchArm {
             ranges: vec![(0, 0)],
-            body: vec![self.fault(at, FaultKind::NullReference)],
+            body: vec![set_status(self, 1)],
         });
-        let sw = Stmt {
-            kind: StmtKind::Switch {
-                selector: self.load(self.field(t, OBJECT)),
-                arms,
-                default: vec![self.fault(at, FaultKind::PointerBounds)],
+        let body = vec![
+            set_status(self, 0),
+            Stmt {
+                kind: StmtKind::Switch {
+                    selector: self.load(self.field(t, OBJECT)),
+                    arms,
+                    default: vec![set_status(self, 2)],
+                },
+                line: 0,
+                col: 0,
             },
-            line: at.0,
-            col: at.1,
-        };
-        self.pending.push(sw);
-        if let Some(val) = val {
-            if write {
-                self.ptr_write_back(t, val, elem, at);
-            }
-            return self.var_place(val, elem);
-        }
-        match (r, elem_ref) {
-            (Some(r), Some(rt)) => Place {
-                root: Root::Deref(Box::new(self.load(self.var_place(r, rt)))),
-                proj: vec![],
-                ty,
-            },
-            _ => {
-                let v = self.ptr_temp("byte", ty);
-                self.var_place(v, ty)
-            }
+        ];
+        crate::Pou {
+            kind: stc_syntax::ast::PouKind::Function,
+            name,
+            vars: std::mem::take(&mut self.vars),
+            result,
+            body,
+            is_std: false,
+            span: Span::default(),
+            name_span: Span::default(),
+            file: String::new(),
         }
     }
 
-    /// After a statement that wrote the byte `val` through the pointer in
-    /// `t`: the write, into the element or into the string.
-    fn ptr_write_back(&mut self, t: crate::VarId, val: crate::VarId, elem: TypeId, at: (u32, u32)) {
+    /// A STRING's byte at the pointer's offset: read into `val` (Get), or
+    /// `val` written (Set: a NUL inside the string ends it there, another
+    /// byte inside replaces its character, at its end appends one while
+    /// there is room, after its end is status 2).
+    #[allow(clippy::too_many_arguments)]
+    fn string_byte(
+        &self,
+        h: Helper,
+        k: &stc_sema::PtrKind,
+        obj_place: Place,
+        t: crate::VarId,
+        val: crate::VarId,
+        elem: TypeId,
+        status: crate::VarId,
+    ) -> Vec<Stmt> {
         let info = self.ptrs();
         let dint = info.dint;
         let bool_ty = self.bool_ty();
+        let at = (0, 0);
         let off = || self.load(self.field(t, OFFSET));
+        let s = || self.load(obj_place.clone());
+        let len = || self.std_fn(Intrinsic::Len, vec![s()], dint);
         let b = || self.load(self.var_place(val, elem));
-        let mut arms = Vec::new();
-        for (i, k) in info.kinds.iter().enumerate() {
-            let obj = Expr {
-                kind: ExprKind::Convert(Box::new(self.load(self.field(t, BASE)))),
-                ty: k.obj_ref,
-            };
-            let obj_place = Place {
-                root: Root::Deref(Box::new(obj)),
-                proj: vec![],
-                ty: k.obj,
-            };
-            let body = if k.string {
-                let s = || self.load(obj_place.clone());
-                let len = || self.std_fn(Intrinsic::Len, vec![s()], dint);
-                let code = if self.a.types.scalar(elem) == Some(ElemType::Char) {
-                    b()
-                } else {
-                    let from = self.a.types.scalar(elem).unwrap_or(ElemType::Byte);
-                    self.std_fn(
-                        Intrinsic::Convert {
-                            from,
-                            to: ElemType::Char,
-                        },
-                        vec![b()],
-                        info.char_ty,
-                    )
-                };
-                let one = self.std_fn(
+        let if_ = |cond: Expr, then_body: Vec<Stmt>, else_body: Vec<Stmt>| Stmt {
+            kind: StmtKind::If {
+                cond,
+                then_body,
+                else_body,
+            },
+            line: 0,
+            col: 0,
+        };
+        let bounds = self.a.types.byte_size(k.obj).unwrap_or(1) as i128;
+        let fail = self.assign(at, self.var_place(status, dint), self.konst(dint, 2));
+        let inside = self.bin(
+            BinOp::And,
+            self.bin(BinOp::Ge, off(), self.konst(dint, 0), bool_ty),
+            self.bin(BinOp::Lt, off(), self.konst(dint, bounds), bool_ty),
+            bool_ty,
+        );
+        let char_scalar = self.a.types.scalar(elem) == Some(ElemType::Char);
+        let work = if h == Helper::Get {
+            // Its characters, then 0 for every byte after its end.
+            let pos = self.bin(BinOp::Add, off(), self.konst(dint, 1), dint);
+            let one = self.std_fn(Intrinsic::Mid, vec![s(), self.konst(dint, 1), pos], k.obj);
+            let ch = self.std_fn(
+                Intrinsic::Convert {
+                    from: ElemType::String,
+                    to: ElemType::Char,
+                },
+                vec![one],
+                info.char_ty,
+            );
+            let byte = if char_scalar {
+                ch
+            } else {
+                let to = self.a.types.scalar(elem).unwrap_or(ElemType::Byte);
+                self.std_fn(
                     Intrinsic::Convert {
                         from: ElemType::Char,
-                        to: ElemType::String,
+                        to,
                     },
-                    vec![code],
-                    info.string,
-                );
-                let zero = self.bin(BinOp::Eq, b(), self.konst(elem, 0), bool_ty);
-                let cut = self.std_fn(Intrinsic::Left, vec![s(), off()], k.obj);
-                let pos = self.bin(BinOp::Add, off(), self.konst(dint, 1), dint);
-                let replaced = self.std_fn(
-                    Intrinsic::Replace,
-                    vec![s(), one.clone(), self.konst(dint, 1), pos],
-                    k.obj,
-                );
-                let appended = self.std_fn(Intrinsic::Concat, vec![s(), one], k.obj);
-                let cap = self.a.types.byte_size(k.obj).unwrap_or(1) as i128 - 1;
-                let st = |s: &Self, x: Expr| s.assign(at, obj_place.clone(), x);
-                let if_ = |cond, then_body, else_body| Stmt {
-                    kind: StmtKind::If {
-                        cond,
-                        then_body,
-                        else_body,
-                    },
-                    line: at.0,
-                    col: at.1,
-                };
-                // NUL: the string ends here; a character inside: replaced;
-                // at the end: appended; after the end: the fault.
-                let at_end = self.bin(
-                    BinOp::And,
-                    self.bin(BinOp::Eq, off(), len(), bool_ty),
-                    self.bin(BinOp::Lt, off(), self.konst(dint, cap), bool_ty),
-                    bool_ty,
-                );
-                vec![if_(
-                    zero,
-                    vec![if_(
-                        self.bin(BinOp::Lt, off(), len(), bool_ty),
-                        vec![st(self, cut)],
-                        vec![],
-                    )],
-                    vec![if_(
-                        self.bin(BinOp::Lt, off(), len(), bool_ty),
-                        vec![st(self, replaced)],
-                        vec![if_(
-                            at_end,
-                            vec![st(self, appended)],
-                            vec![self.fault(at, FaultKind::PointerBounds)],
-                        )],
-                    )],
-                )]
-            } else {
-                let Some(&rt) = info.elem_refs.get(&elem) else {
-                    continue;
-                };
-                if k.elem != elem && self.a.types.scalar(k.elem) != self.a.types.scalar(elem) {
-                    continue;
-                }
-                let size = k.elem_size as i128;
-                let index = self.bin(BinOp::Div, off(), self.konst(dint, size), dint);
-                let place = self.element_of(obj_place, k.obj, index);
-                let _ = rt;
-                vec![self.assign(at, place, b())]
+                    vec![ch],
+                    elem,
+                )
             };
-            arms.push(SwitchArm {
-                ranges: vec![(i as i128 + 1, i as i128 + 1)],
-                body,
-            });
-        }
-        let sw = Stmt {
-            kind: StmtKind::Switch {
-                selector: self.load(self.field(t, OBJECT)),
-                arms,
-                default: Vec::new(),
-            },
-            line: at.0,
-            col: at.1,
+            vec![if_(
+                self.bin(BinOp::Lt, off(), len(), bool_ty),
+                vec![self.assign(at, self.var_place(val, elem), byte)],
+                vec![self.assign(at, self.var_place(val, elem), self.konst(elem, 0))],
+            )]
+        } else {
+            let code = if char_scalar {
+                b()
+            } else {
+                let from = self.a.types.scalar(elem).unwrap_or(ElemType::Byte);
+                self.std_fn(
+                    Intrinsic::Convert {
+                        from,
+                        to: ElemType::Char,
+                    },
+                    vec![b()],
+                    info.char_ty,
+                )
+            };
+            let one = self.std_fn(
+                Intrinsic::Convert {
+                    from: ElemType::Char,
+                    to: ElemType::String,
+                },
+                vec![code],
+                info.string,
+            );
+            let zero = self.bin(BinOp::Eq, b(), self.konst(elem, 0), bool_ty);
+            let cut = self.std_fn(Intrinsic::Left, vec![s(), off()], k.obj);
+            let pos = self.bin(BinOp::Add, off(), self.konst(dint, 1), dint);
+            let replaced = self.std_fn(
+                Intrinsic::Replace,
+                vec![s(), one.clone(), self.konst(dint, 1), pos],
+                k.obj,
+            );
+            let appended = self.std_fn(Intrinsic::Concat, vec![s(), one], k.obj);
+            let st = |x: Expr| self.assign(at, obj_place.clone(), x);
+            let at_end = self.bin(
+                BinOp::And,
+                self.bin(BinOp::Eq, off(), len(), bool_ty),
+                self.bin(BinOp::Lt, off(), self.konst(dint, bounds - 1), bool_ty),
+                bool_ty,
+            );
+            vec![if_(
+                zero,
+                vec![if_(
+                    self.bin(BinOp::Lt, off(), len(), bool_ty),
+                    vec![st(cut)],
+                    vec![],
+                )],
+                vec![if_(
+                    self.bin(BinOp::Lt, off(), len(), bool_ty),
+                    vec![st(replaced)],
+                    vec![if_(at_end, vec![st(appended)], vec![fail.clone()])],
+                )],
+            )]
         };
-        self.post.push(sw);
+        vec![if_(inside, work, vec![fail])]
     }
 
     /// The element `index` (0-based, row-major over every dimension) of

@@ -7,8 +7,8 @@ use super::{is_item_end, is_item_start, is_var_block_start, Parser};
 use crate::ast::{
     Access, AccessDecl, AccessDirection, ArrayDim, ArrayInitElem, ClassKind, ConfigInit,
     Configuration, Edge, EnumMember, Init, InitKind, Item, Located, Method, Pou, PouKind,
-    ProgramConfig, ProgramConn, Resource, Retention, SfcBody, StructInitElem, TaskDecl, TypeDecl,
-    TypeSpec, TypeSpecKind, VarBlock, VarBlockItems, VarDecl, VarKind,
+    ProgramConfig, ProgramConn, PropertyPart, Resource, Retention, SfcBody, StructInitElem,
+    TaskDecl, TypeDecl, TypeSpec, TypeSpecKind, VarBlock, VarBlockItems, VarDecl, VarKind,
 };
 use crate::literal;
 use crate::token::{ElemType, Keyword, TokenKind};
@@ -214,8 +214,14 @@ impl Parser<'_> {
         }
         let mut methods = Vec::new();
         if kind == PouKind::FunctionBlock {
-            while !self.aborted && self.at_word("METHOD") && self.nth_kind(1) == TokenKind::Ident {
-                if let Some(m) = self.method() {
+            while !self.aborted
+                && (self.at_word("METHOD") || self.at_word("PROPERTY"))
+                && self.nth_kind(1) == TokenKind::Ident
+            {
+                if self.at_word("PROPERTY") {
+                    let mut parts = self.property();
+                    methods.append(&mut parts);
+                } else if let Some(m) = self.method() {
                     methods.push(m);
                 }
                 while self.eat(TokenKind::Semi) {}
@@ -433,7 +439,140 @@ impl Parser<'_> {
             is_final,
             is_override,
             is_action: false,
+            property: None,
         })
+    }
+
+    /// `PROPERTY [access] name : T`, then `GET [variables] statements
+    /// END_GET` and/or `SET [variables] statements END_SET`, then
+    /// `END_PROPERTY`: one method per accessor (see [`Method::property`]).
+    pub(crate) fn property(&mut self) -> Vec<Method> {
+        let opener = self.bump().span();
+        let mut access = None;
+        let (mut is_abstract, mut is_final, mut is_override) = (false, false, false);
+        while self.nth_kind(1) == TokenKind::Ident || self.nth_kind(1) == TokenKind::Colon {
+            if self.nth_kind(1) == TokenKind::Colon {
+                break;
+            }
+            let word = self.text_of(self.tok()).to_ascii_uppercase();
+            match word.as_str() {
+                "PUBLIC" => access = Some(Access::Public),
+                "PRIVATE" => access = Some(Access::Private),
+                "PROTECTED" => access = Some(Access::Protected),
+                "INTERNAL" => access = Some(Access::Internal),
+                "ABSTRACT" => is_abstract = true,
+                "FINAL" => is_final = true,
+                "OVERRIDE" => is_override = true,
+                _ => break,
+            }
+            self.bump();
+        }
+        let Some(name) = self.name("a property name") else {
+            self.skip_unsupported("END_PROPERTY", |k| is_item_end(k) || is_item_start(k));
+            return Vec::new();
+        };
+        let ty = if self.eat(TokenKind::Colon) {
+            self.type_spec()
+        } else {
+            self.expected("`:` and the property's type");
+            TypeSpec {
+                kind: TypeSpecKind::Error,
+                span: name.span,
+            }
+        };
+        let mut out = Vec::new();
+        loop {
+            while self.eat(TokenKind::Semi) {}
+            let part = if self.at_word("GET") {
+                PropertyPart::Get
+            } else if self.at_word("SET") {
+                PropertyPart::Set
+            } else {
+                break;
+            };
+            let start = self.bump().span();
+            let end_word = if part == PropertyPart::Get {
+                "END_GET"
+            } else {
+                "END_SET"
+            };
+            let mut var_blocks = Vec::new();
+            if part == PropertyPart::Set {
+                // The value being set, under the property's name.
+                let decl = VarDecl {
+                    names: vec![name],
+                    location: None,
+                    ty: ty.clone(),
+                    edge: None,
+                    init: None,
+                    span: name.span,
+                    pragmas: Vec::new(),
+                };
+                var_blocks.push(VarBlock {
+                    kind: VarKind::Input,
+                    constant: false,
+                    retention: None,
+                    items: VarBlockItems::Vars(vec![decl]),
+                    span: name.span,
+                });
+            }
+            while !self.aborted {
+                if self.at_var_block_start() {
+                    if let Some(b) = self.var_block() {
+                        var_blocks.push(b);
+                    }
+                } else if self.at(TokenKind::Semi) {
+                    self.bump();
+                } else {
+                    break;
+                }
+            }
+            let outer = std::mem::replace(&mut self.in_method, true);
+            let outer_property = std::mem::replace(&mut self.in_property, true);
+            let body = self.stmt_list(false);
+            self.in_method = outer;
+            self.in_property = outer_property;
+            if self.at_word(end_word) {
+                self.bump();
+            } else {
+                self.expected(&format!("`{end_word}`"));
+            }
+            let span = start.to(self.prev().span());
+            let pou_name = match part {
+                PropertyPart::Get => name,
+                PropertyPart::Set => {
+                    let key = format!("{}.SET", self.interner.spelling(name.sym).to_owned());
+                    crate::ast::Ident {
+                        sym: self.interner.intern(&key),
+                        span: name.span,
+                    }
+                }
+            };
+            let return_type = (part == PropertyPart::Get).then(|| ty.clone());
+            out.push(Method {
+                pou: method_pou(pou_name, return_type, var_blocks, body, span),
+                access,
+                is_abstract,
+                is_final,
+                is_override,
+                is_action: false,
+                property: Some((part, name)),
+            });
+        }
+        if self.at_word("END_PROPERTY") {
+            self.bump();
+        } else {
+            self.expected("`GET`, `SET` or `END_PROPERTY`");
+            self.skip_unsupported("END_PROPERTY", |k| is_item_end(k) || is_item_start(k));
+        }
+        if out.is_empty() {
+            let span = opener.to(self.prev().span());
+            self.report(
+                Diagnostic::new(Code::E0020, span, "a PROPERTY needs a GET or a SET")
+                    .with_label("no accessor"),
+            );
+        }
+        out
     }
 
     /// `ACTION name [:] statements END_ACTION` after the body of a function
@@ -461,6 +600,7 @@ impl Parser<'_> {
             is_final: false,
             is_override: false,
             is_action: true,
+            property: None,
         })
     }
 

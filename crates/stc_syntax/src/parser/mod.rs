@@ -119,6 +119,7 @@ pub fn parse_file_in(
         pou_partial: false,
         pou_skipped: Vec::new(),
         pou_kind: None,
+        in_property: false,
         late_methods: Vec::new(),
         in_method: false,
         in_action: false,
@@ -247,6 +248,9 @@ pub(crate) struct Parser<'a> {
     in_method: bool,
     /// Inside the body of an ACTION: END_ACTION ends its statement list.
     in_action: bool,
+    /// Inside an accessor of a PROPERTY: END_GET, END_SET and END_PROPERTY
+    /// end its statement list.
+    in_property: bool,
     /// The kind of the POU whose body is being parsed.
     pou_kind: Option<PouKind>,
     /// METHODs written after the statements of a function block's body (a

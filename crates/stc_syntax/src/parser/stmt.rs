@@ -74,6 +74,13 @@ impl Parser<'_> {
             if self.in_action && self.at_word("END_ACTION") {
                 break;
             }
+            if self.in_property
+                && (self.at_word("END_GET")
+                    || self.at_word("END_SET")
+                    || self.at_word("END_PROPERTY"))
+            {
+                break;
+            }
             let before = self.pos;
             if let Some(s) = self.statement() {
                 out.push(s);
@@ -397,6 +404,17 @@ impl Parser<'_> {
             while self.eat(TokenKind::Semi) {}
             return true;
         }
+        if self.at_word("PROPERTY")
+            && self.nth_kind(1) == TokenKind::Ident
+            && self.pou_kind == Some(PouKind::FunctionBlock)
+            && !self.in_method
+        {
+            // A PROPERTY after the statements of its block's body.
+            let mut parts = self.property();
+            self.late_methods.append(&mut parts);
+            while self.eat(TokenKind::Semi) {}
+            return true;
+        }
         if self.at_word("ACTION")
             && matches!(self.nth_kind(1), TokenKind::Ident)
             && matches!(
@@ -419,7 +437,11 @@ impl Parser<'_> {
                 "END_METHOD",
                 "methods outside a function block are",
             ),
-            ("PROPERTY", "END_PROPERTY", "properties are"),
+            (
+                "PROPERTY",
+                "END_PROPERTY",
+                "properties outside a function block are",
+            ),
             ("ACTION", "END_ACTION", "actions of a FUNCTION are"),
         ] {
             if self.at_word(word) && self.nth_kind(1) == TokenKind::Ident {

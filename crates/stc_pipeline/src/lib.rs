@@ -28,6 +28,8 @@
 //! language server must do the same for each request, a default 2 MiB
 //! thread is not enough for the deepest inputs the parser accepts).
 
+pub mod incremental;
+
 use stc_diagnostics::{Diagnostic, SourceMap, Span};
 use stc_syntax::ast::Ast;
 use stc_syntax::Interner;
@@ -127,12 +129,37 @@ pub fn compile_text(name: &str, text: &str, opts: &Options) -> Compiled {
 /// (so `stc check` reports a declaration too large for the memory model,
 /// E0901, as every back end would: the layout is computed once, in stc_ir).
 /// `diagnostics` are kept first.
-pub fn analyse(mut sources: SourceMap, diagnostics: Vec<Diagnostic>, opts: &Options) -> Analysed {
+pub fn analyse(sources: SourceMap, diagnostics: Vec<Diagnostic>, opts: &Options) -> Analysed {
+    analyse_linted(sources, diagnostics, opts, None)
+}
+
+/// [`analyse`], then the lints at `lints` on the analysed program
+/// (`stc check` and the language server; the other commands do not lint,
+/// so their output never changes with a lint). The lints' findings come
+/// after the analyser's and do not decide whether the project is lowered.
+pub fn analyse_linted(
+    mut sources: SourceMap,
+    diagnostics: Vec<Diagnostic>,
+    opts: &Options,
+    lints: Option<&stc_lint::Levels>,
+) -> Analysed {
     let prelude_id = sources
         .add(stc_sema::prelude::PRELUDE_NAME, stc_sema::prelude::source())
         .expect("the prelude fits in the position space");
     let prelude = sources.file(prelude_id).span();
-    let mut parsed = parse(sources, diagnostics, opts);
+    let parsed = parse(sources, diagnostics, opts);
+    analyse_parsed(parsed, prelude, opts, lints)
+}
+
+/// Analyses a project parsed with the prelude (at `prelude`) and lints it
+/// with `lints`: the second half of [`analyse_linted`], for a caller that
+/// parsed the files itself ([`incremental`]).
+pub fn analyse_parsed(
+    mut parsed: Parsed,
+    prelude: Span,
+    opts: &Options,
+    lints: Option<&stc_lint::Levels>,
+) -> Analysed {
     let mut analysis = stc_sema::analyze(
         &parsed.ast,
         &mut parsed.interner,
@@ -146,12 +173,35 @@ pub fn analyse(mut sources: SourceMap, diagnostics: Vec<Diagnostic>, opts: &Opti
         .iter()
         .chain(diagnostics.iter())
         .any(|d| d.is_error());
+    let found = match lints {
+        Some(levels) => {
+            let said: Vec<Diagnostic> = parsed
+                .diagnostics
+                .iter()
+                .chain(diagnostics.iter())
+                .cloned()
+                .collect();
+            stc_lint::check(
+                &stc_lint::Input {
+                    ast: &parsed.ast,
+                    analysis: &analysis,
+                    interner: &parsed.interner,
+                    sources: &parsed.sources,
+                    prelude,
+                    diagnostics: &said,
+                },
+                levels,
+            )
+        }
+        None => Vec::new(),
+    };
     let module = clean.then(|| {
         let m = stc_ir::lower(&parsed.ast, analysis, &parsed.interner, &parsed.sources);
         diagnostics.extend(stc_ir::layout::Layouts::check(&m));
         m
     });
     let module = module.filter(|_| !diagnostics.iter().any(|d| d.is_error()));
+    diagnostics.extend(found);
     Analysed {
         parsed,
         diagnostics,

@@ -25,6 +25,7 @@ struct Unit<'a> {
 pub fn run(input: &Input<'_>, levels: &Levels) -> Vec<Diagnostic> {
     let on = |c: Code| levels.get(c) != Level::Allow;
     let units = units(input);
+    let shared = Shared::new(input, &units);
     let mut out = Vec::new();
     for u in &units {
         if on(Code::L0001) || on(Code::L0002) || on(Code::L0007) {
@@ -34,10 +35,10 @@ pub fn run(input: &Input<'_>, levels: &Levels) -> Vec<Diagnostic> {
             output_before_call(input, u, &mut out);
         }
         if on(Code::L0004) {
-            shadowed_global(input, u, &mut out);
+            shadowed_global(input, &shared, u, &mut out);
         }
         if on(Code::L0005) {
-            unused_input(input, u, &units, &mut out);
+            unused_input(input, &shared, u, &units, &mut out);
         }
         if on(Code::L0006) {
             case_without_else(input, u, &mut out);
@@ -50,6 +51,45 @@ pub fn run(input: &Input<'_>, levels: &Levels) -> Vec<Diagnostic> {
         nested_comments(input, &mut out);
     }
     out
+}
+
+/// What several rules ask about the whole project, computed once.
+struct Shared {
+    /// The global variables by name (the first of a name).
+    globals: FxHashMap<stc_syntax::Symbol, Span>,
+    /// Where W0109 (a local name hides a global one) was reported.
+    w0109: FxHashSet<Span>,
+    /// The blocks some block EXTENDS.
+    extended: FxHashSet<PouId>,
+    /// For each function block, its methods (indices into the units).
+    methods: FxHashMap<PouId, Vec<usize>>,
+}
+
+impl Shared {
+    fn new(input: &Input<'_>, units: &[Unit<'_>]) -> Shared {
+        let a = input.analysis;
+        let mut globals = FxHashMap::default();
+        for g in &a.globals {
+            globals.entry(g.var.name).or_insert(g.var.span);
+        }
+        let mut methods: FxHashMap<PouId, Vec<usize>> = FxHashMap::default();
+        for (i, u) in units.iter().enumerate() {
+            if let Some((owner, _)) = u.def.method_of {
+                methods.entry(owner).or_default().push(i);
+            }
+        }
+        Shared {
+            globals,
+            w0109: input
+                .diagnostics
+                .iter()
+                .filter(|d| d.code == Code::W0109)
+                .map(|d| d.span)
+                .collect(),
+            extended: a.pous.iter().filter_map(|p| p.base).collect(),
+            methods,
+        }
+    }
 }
 
 /// The user's POUs (methods included) that have a body to lint: not the
@@ -347,19 +387,12 @@ fn in_order(
 }
 
 /// L0004: a variable of a POU named like a global variable.
-fn shadowed_global(input: &Input<'_>, u: &Unit<'_>, out: &mut Vec<Diagnostic>) {
-    let a = input.analysis;
-    if a.globals.is_empty() {
+fn shadowed_global(input: &Input<'_>, shared: &Shared, u: &Unit<'_>, out: &mut Vec<Diagnostic>) {
+    let globals = &shared.globals;
+    if globals.is_empty() {
         return;
     }
-    let globals: FxHashMap<stc_syntax::Symbol, Span> =
-        a.globals.iter().map(|g| (g.var.name, g.var.span)).collect();
-    let said = |span: Span| {
-        input
-            .diagnostics
-            .iter()
-            .any(|d| d.code == Code::W0109 && d.span == span)
-    };
+    let said = |span: Span| shared.w0109.contains(&span);
     for (i, var) in u.def.vars.iter().enumerate() {
         let v = VarId(i as u32);
         if var.implicit || u.def.hidden_var(v) || (i as u32) < u.def.inherited {
@@ -393,13 +426,19 @@ fn shadowed_global(input: &Input<'_>, u: &Unit<'_>, out: &mut Vec<Diagnostic>) {
 
 /// L0005: a VAR_INPUT of a FUNCTION, FUNCTION_BLOCK or PROGRAM that its
 /// body (and, for a block, its methods) never refers to.
-fn unused_input(input: &Input<'_>, u: &Unit<'_>, units: &[Unit<'_>], out: &mut Vec<Diagnostic>) {
+fn unused_input(
+    input: &Input<'_>,
+    shared: &Shared,
+    u: &Unit<'_>,
+    units: &[Unit<'_>],
+    out: &mut Vec<Diagnostic>,
+) {
     let a = input.analysis;
     if u.def.method_of.is_some() || u.syn.partial || u.syn.is_abstract || u.def.class.is_some() {
         return;
     }
     // A block some other block extends may leave its inputs to them.
-    if a.pous.iter().any(|p| p.base == Some(u.id)) {
+    if shared.extended.contains(&u.id) {
         return;
     }
     let inputs: Vec<VarId> = u
@@ -425,9 +464,12 @@ fn unused_input(input: &Input<'_>, u: &Unit<'_>, units: &[Unit<'_>], out: &mut V
         &mut |e| exprs.push((e, true)),
         &mut |_| {},
     );
-    for m in units
-        .iter()
-        .filter(|m| m.def.method_of.is_some_and(|(o, _)| o == u.id))
+    for m in shared
+        .methods
+        .get(&u.id)
+        .into_iter()
+        .flatten()
+        .filter_map(|&i| units.get(i))
     {
         walk::body_exprs(
             input.ast,
@@ -500,6 +542,9 @@ fn nested_comments(input: &Input<'_>, out: &mut Vec<Diagnostic>) {
     for (_, f) in input.sources.files() {
         let span = f.span();
         if span.lo == input.prelude.lo && span.hi == input.prelude.hi {
+            continue;
+        }
+        if !may_nest(&f.text) {
             continue;
         }
         let lexed = lex(&f.text, f.base);
@@ -736,4 +781,30 @@ impl Paths<'_, '_> {
             assigned.extend(self.assigns_top(s));
         }
     }
+}
+
+/// Whether a text may hold a nested `(*` comment: a quick scan that counts
+/// `(*` and `*)` and ignores strings and other comments, so it may say yes
+/// where the lexer finds none, never no where there is one.
+fn may_nest(text: &str) -> bool {
+    let b = text.as_bytes();
+    let mut depth = 0u32;
+    let mut i = 0;
+    while i + 1 < b.len() {
+        match (b[i], b[i + 1]) {
+            (b'(', b'*') => {
+                if depth > 0 {
+                    return true;
+                }
+                depth += 1;
+                i += 2;
+            }
+            (b'*', b')') if depth > 0 => {
+                depth -= 1;
+                i += 2;
+            }
+            _ => i += 1,
+        }
+    }
+    false
 }

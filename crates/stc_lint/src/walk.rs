@@ -173,6 +173,18 @@ pub fn body_exprs(ast: &Ast, pou: &Pou, f: &mut dyn FnMut(ExprId), labels: &mut 
             }
         }
     }
+    if pou.il.is_none() {
+        // ST: every expression is in one tree only.
+        for r in roots {
+            expr_tree(ast, r, f);
+        }
+        for r in label_roots {
+            expr_tree(ast, r, labels);
+        }
+        return;
+    }
+    // The meanings of IL instructions may share an operand (`S x` holds
+    // both forms): each expression once.
     let mut seen = rustc_hash::FxHashSet::default();
     for r in roots {
         expr_tree(ast, r, &mut |e| {

@@ -58,6 +58,10 @@ impl Project {
         self.analysed
     }
 
+    pub(crate) fn analysed_mut(&mut self) -> &mut stc_pipeline::Analysed {
+        &mut self.analysed
+    }
+
     pub(crate) fn sources(&self) -> &SourceMap {
         &self.analysed.parsed.sources
     }

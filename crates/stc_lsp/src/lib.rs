@@ -135,6 +135,13 @@ pub fn serve(
             }
             Message::Response(_) => {}
         }
+        // With nothing waiting, the rest of the analysis (lowering, the
+        // memory layout's E0901) and freeing what is out of date.
+        if conn.receiver.is_empty() {
+            for m in server.finish_and_publish() {
+                conn.sender.send(Message::Notification(m))?;
+            }
+        }
     }
     Ok(())
 }
@@ -201,6 +208,19 @@ impl Server {
     /// them the first time).
     fn analyse_and_publish(&mut self) -> Vec<Notification> {
         self.workspace.analyse();
+        self.publish()
+    }
+
+    /// Finishes the last analysis; publishes what that changed.
+    fn finish_and_publish(&mut self) -> Vec<Notification> {
+        if self.workspace.finish() {
+            self.publish()
+        } else {
+            Vec::new()
+        }
+    }
+
+    fn publish(&mut self) -> Vec<Notification> {
         let Some(project) = self.workspace.project() else {
             return Vec::new();
         };

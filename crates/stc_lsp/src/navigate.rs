@@ -590,9 +590,9 @@ impl Project {
                 let piece_trim = piece.strip_suffix('\r').unwrap_or(piece);
                 let len: u32 = piece_trim.chars().map(|c| c.len_utf16() as u32).sum();
                 if len > 0 {
-                    let delta_line = p.line - line;
+                    let delta_line = p.line.saturating_sub(line);
                     let delta_start = if delta_line == 0 {
-                        p.character - col
+                        p.character.saturating_sub(col)
                     } else {
                         p.character
                     };

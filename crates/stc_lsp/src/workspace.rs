@@ -30,6 +30,13 @@ pub struct Workspace {
     /// Where the files before the last one end in the last analysis.
     mark: Option<Mark>,
     project: Option<Project>,
+    /// The last analysis, until [`Workspace::finish`] lowers it.
+    pending: Option<stc_pipeline::Pending>,
+    /// The previous lowered module and the analysis that was not lowered,
+    /// freed in [`Workspace::finish`] (so freeing them is not on the way to
+    /// the diagnostics).
+    old_module: Option<stc_pipeline::Module>,
+    stale: Option<stc_pipeline::Pending>,
     opts: Options,
     lints: Option<stc_lint::Levels>,
     /// Whether the last analysis parsed only the last file.
@@ -51,6 +58,9 @@ impl Workspace {
             order: Vec::new(),
             mark: None,
             project: None,
+            pending: None,
+            old_module: None,
+            stale: None,
             opts,
             lints,
             last_was_incremental: false,
@@ -82,7 +92,8 @@ impl Workspace {
         self.project.as_ref()
     }
 
-    /// Analyses the project if a file changed since the last analysis.
+    /// Analyses the project if a file changed since the last analysis (up
+    /// to the lints: [`Workspace::finish`] does the rest).
     pub fn analyse(&mut self) {
         if self.dirty.is_empty() && self.project.is_some() {
             return;
@@ -93,6 +104,8 @@ impl Workspace {
         let last = self.order.last().cloned();
         let opts = self.opts;
         let lints = self.lints;
+        // The analysis waiting to be lowered is out of date: freed later.
+        let stale = self.pending.take();
         if let (true, Some(last), Some(mark), true) = (
             same_files,
             last.clone(),
@@ -101,15 +114,19 @@ impl Workspace {
         ) {
             if let Some(old) = self.project.take() {
                 let text = self.files.get(&last).cloned().unwrap_or_default();
-                let analysed = stc_pipeline::with_big_stack(move || {
+                let (analysed, pending, module) = stc_pipeline::with_big_stack(move || {
                     let Analysed { parsed, module, .. } = old.into_analysed();
-                    drop(module);
                     let (parsed, prelude) =
                         incremental::reparse_last(parsed, mark, last, text, &opts);
-                    stc_pipeline::analyse_parsed(parsed, prelude, &opts, lints.as_ref())
+                    let (a, p) = stc_pipeline::check_parsed(parsed, prelude, &opts, lints.as_ref());
+                    (a, p, module)
                 });
                 self.project = Some(Project::from_analysed(analysed));
+                self.pending = Some(pending);
+                self.old_module = self.old_module.take().or(module);
                 self.last_was_incremental = true;
+                // Freed here only when nothing else is to do.
+                self.stale = stale;
                 return;
             }
         }
@@ -130,17 +147,32 @@ impl Workspace {
         // The old analysis is dropped before the new one is made (the
         // memory of two large projects at once is not needed).
         self.project = None;
-        let (analysed, mark) = stc_pipeline::with_big_stack(move || {
+        self.old_module = None;
+        drop(stale);
+        let (analysed, pending, mark) = stc_pipeline::with_big_stack(move || {
             let (parsed, mark, prelude) = incremental::parse_all(files, &opts);
-            (
-                stc_pipeline::analyse_parsed(parsed, prelude, &opts, lints.as_ref()),
-                mark,
-            )
+            let (a, p) = stc_pipeline::check_parsed(parsed, prelude, &opts, lints.as_ref());
+            (a, p, mark)
         });
         self.project = Some(Project::from_analysed(analysed));
+        self.pending = Some(pending);
         self.mark = Some(mark);
         self.order = order;
         self.last_was_incremental = false;
+    }
+
+    /// The rest of the last analysis: without errors, the project is
+    /// lowered and its memory layout checked (E0901); what is out of date
+    /// is freed. Returns whether the diagnostics changed. A server calls it
+    /// after publishing the analysis's diagnostics, when no message waits.
+    pub fn finish(&mut self) -> bool {
+        self.old_module = None;
+        self.stale = None;
+        let (Some(pending), Some(project)) = (self.pending.take(), self.project.as_mut()) else {
+            return false;
+        };
+        let analysed = project.analysed_mut();
+        stc_pipeline::with_big_stack(move || stc_pipeline::lay_out(analysed, pending))
     }
 }
 
@@ -201,6 +233,7 @@ mod tests {
         for (i, text) in edits.iter().enumerate() {
             ws.set("file:///main.st".into(), text.clone());
             ws.analyse();
+            ws.finish();
             incremental += usize::from(ws.last_was_incremental);
             let files: Vec<(String, String)> = ws
                 .order()

@@ -189,23 +189,20 @@ fn expression_rules(input: &Input<'_>, u: &Unit<'_>, levels: &Levels, out: &mut 
                     op: op @ (BinaryOp::Eq | BinaryOp::Ne),
                     lhs,
                     rhs,
-                } if real_eq => {
-                    if (is_real(*lhs) || is_real(*rhs))
-                        && a.expr_type(*lhs) != stc_sema::TypeId::ERROR
-                        && a.expr_type(*rhs) != stc_sema::TypeId::ERROR
-                    {
-                        out.push(
-                            Diagnostic::new(
-                                Code::L0007,
-                                expr.span,
-                                format!("REAL values compared with `{}`", op.symbol()),
-                            )
-                            .with_label("exact comparison of floating-point values")
-                            .with_help(
-                                "compare the difference with a tolerance: `ABS(a - b) < eps`",
-                            ),
-                        );
-                    }
+                } if real_eq
+                    && (is_real(*lhs) || is_real(*rhs))
+                    && a.expr_type(*lhs) != stc_sema::TypeId::ERROR
+                    && a.expr_type(*rhs) != stc_sema::TypeId::ERROR =>
+                {
+                    out.push(
+                        Diagnostic::new(
+                            Code::L0007,
+                            expr.span,
+                            format!("REAL values compared with `{}`", op.symbol()),
+                        )
+                        .with_label("exact comparison of floating-point values")
+                        .with_help("compare the difference with a tolerance: `ABS(a - b) < eps`"),
+                    );
                 }
                 _ => {}
             }

@@ -338,10 +338,8 @@ impl Project {
                     | Some(TokenKind::Kw(stc_syntax::token::Keyword::Not))
             )
         {
-            if let Some((callee, _)) = self.callee(index, text, base, toks, i) {
-                if let Decl::Pou(p) = callee {
-                    return var_in(&p.var_blocks, sym);
-                }
+            if let Some((Decl::Pou(p), _)) = self.callee(index, text, base, toks, i) {
+                return var_in(&p.var_blocks, sym);
             }
         }
         self.resolve(index, sym, at)
@@ -500,23 +498,26 @@ impl Project {
             }
         }
         let name = self.sources().slice(decl).to_string();
-        let mut changes: HashMap<Uri, Vec<TextEdit>> = HashMap::new();
+        let mut by_uri: std::collections::BTreeMap<String, Vec<TextEdit>> = Default::default();
         let mut spans = self.places(decl, &name);
         if !spans.contains(&decl) {
             spans.push(decl);
         }
         for s in spans {
             if let Some((u, r)) = self.range(s) {
-                if let Ok(u) = u.parse::<Uri>() {
-                    changes.entry(u).or_default().push(TextEdit {
-                        range: r,
-                        new_text: new_name.to_string(),
-                    });
-                }
+                by_uri.entry(u).or_default().push(TextEdit {
+                    range: r,
+                    new_text: new_name.to_string(),
+                });
             }
         }
         Ok(WorkspaceEdit {
-            changes: Some(changes),
+            changes: Some(
+                by_uri
+                    .into_iter()
+                    .filter_map(|(u, edits)| Some((u.parse::<Uri>().ok()?, edits)))
+                    .collect(),
+            ),
             ..WorkspaceEdit::default()
         })
     }

@@ -509,6 +509,20 @@ fn references_rename_semantic_tokens_and_signature_help() {
     let r = refs(&mut c, URI, 23, 5, true);
     assert!(r["result"].is_array(), "{r}");
 
+    // Lints are diagnostics like the others (at their default levels).
+    let linted = OTHER.replace(
+        "n := k.count;",
+        "n := k.count;\n    k(pulse := INT_TO_REAL(n) = 0.5);",
+    );
+    c.notify(
+        "textDocument/didChange",
+        json!({"textDocument": {"uri": OTHER_URI, "version": 2}, "contentChanges": [{"text": linted}]}),
+    );
+    let d = c.diagnostics(OTHER_URI);
+    assert_eq!(d.len(), 1, "{d:?}");
+    assert_eq!(d[0]["code"], "L0007", "{d:?}");
+    assert_eq!(d[0]["severity"], 2, "a warning: {d:?}");
+
     c.request("shutdown", Value::Null);
     c.notify("exit", Value::Null);
     assert!(c.child.wait().unwrap().success());

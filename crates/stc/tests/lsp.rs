@@ -528,6 +528,61 @@ fn references_rename_semantic_tokens_and_signature_help() {
     assert!(c.child.wait().unwrap().success());
 }
 
+/// Every prefix of a file (every 5th byte) is a half-typed file: each
+/// request gets an answer (a result or an error), never a crash.
+#[test]
+fn half_typed_files_never_crash_a_request() {
+    let mut c = start_with_two_files();
+    let full = format!("{TEXT}{OTHER}");
+    let mut version = 2;
+    for end in (0..=full.len()).step_by(5) {
+        let Some(text) = full.get(..end) else {
+            continue;
+        };
+        version += 1;
+        c.notify(
+            "textDocument/didChange",
+            json!({"textDocument": {"uri": URI, "version": version}, "contentChanges": [{"text": text}]}),
+        );
+        let _ = c.diagnostics(URI);
+        let last_line = text.lines().count().saturating_sub(1) as u32;
+        let last_col = text.lines().last().map_or(0, |l| l.len()) as u32;
+        for (line, ch) in [(0, 0), (last_line, last_col), (last_line / 2, 4)] {
+            let at =
+                json!({"textDocument": {"uri": URI}, "position": {"line": line, "character": ch}});
+            for method in [
+                "textDocument/definition",
+                "textDocument/hover",
+                "textDocument/completion",
+                "textDocument/signatureHelp",
+                "textDocument/prepareRename",
+            ] {
+                let r = c.request(method, at.clone());
+                assert!(
+                    r.get("result").is_some() || r.get("error").is_some(),
+                    "{method}: {r}"
+                );
+            }
+            let mut refs = at.clone();
+            refs["context"] = json!({"includeDeclaration": true});
+            let r = c.request("textDocument/references", refs);
+            assert!(r.get("result").is_some() || r.get("error").is_some(), "{r}");
+            let mut rename = at.clone();
+            rename["newName"] = json!("renamed");
+            let r = c.request("textDocument/rename", rename);
+            assert!(r.get("result").is_some() || r.get("error").is_some(), "{r}");
+        }
+        let r = c.request(
+            "textDocument/semanticTokens/full",
+            json!({"textDocument": {"uri": URI}}),
+        );
+        assert!(r["result"]["data"].is_array(), "{r}");
+    }
+    c.request("shutdown", Value::Null);
+    c.notify("exit", Value::Null);
+    assert!(c.child.wait().unwrap().success());
+}
+
 /// The latency of diagnostics after an edit in a 100 000-line project
 /// (docs/benchmarks.md): `cargo test --release -p stc --test lsp --
 /// --ignored --nocapture`.

@@ -454,11 +454,22 @@ fn unused_input(
     if inputs.is_empty() {
         return;
     }
+    // Only names refer to variables: the others need no look-up.
+    let is_name = |e: ExprId| {
+        matches!(
+            input.ast.exprs.get(e.index()).map(|x| &x.kind),
+            Some(ExprKind::Name(_))
+        )
+    };
     let mut exprs: Vec<(ExprId, bool)> = Vec::new();
     walk::body_exprs(
         input.ast,
         u.syn,
-        &mut |e| exprs.push((e, true)),
+        &mut |e| {
+            if is_name(e) {
+                exprs.push((e, true))
+            }
+        },
         &mut |_| {},
     );
     for m in shared
@@ -471,7 +482,11 @@ fn unused_input(
         walk::body_exprs(
             input.ast,
             m.syn,
-            &mut |e| exprs.push((e, false)),
+            &mut |e| {
+                if is_name(e) {
+                    exprs.push((e, false))
+                }
+            },
             &mut |_| {},
         );
     }

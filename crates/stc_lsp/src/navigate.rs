@@ -158,8 +158,25 @@ impl Project {
         Index { globals, pous }
     }
 
-    /// What `sym` written at `at` (not after a dot) declares.
+    /// What `sym` written at `at` (not after a dot) declares. A
+    /// VAR_EXTERNAL stands for the global it binds: they are one name (a
+    /// rename renames both).
     pub(crate) fn resolve<'a>(
+        &'a self,
+        index: &Index<'a>,
+        sym: Symbol,
+        at: u32,
+    ) -> Option<(Span, Decl<'a>)> {
+        let found = self.resolve_local(index, sym, at);
+        if let Some((_, Decl::Var(_, VarKind::External))) = found {
+            if let Some(g @ (_, Decl::Var(..))) = index.globals.get(&sym) {
+                return Some(*g);
+            }
+        }
+        found
+    }
+
+    fn resolve_local<'a>(
         &'a self,
         index: &Index<'a>,
         sym: Symbol,
@@ -780,4 +797,26 @@ fn contains_ignore_case(text: &str, name: &str) -> bool {
     text.as_bytes()
         .windows(n.len())
         .any(|w| w.eq_ignore_ascii_case(n))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_global_and_its_externals_are_one_name() {
+        let text = "VAR_GLOBAL\n    g : INT;\nEND_VAR\nPROGRAM P\nVAR_EXTERNAL\n    g : INT;\nEND_VAR\n    g := g + 1;\nEND_PROGRAM\n";
+        let uri = "file:///g.st".to_string();
+        let p = Project::analyse(vec![(uri.clone(), text.into())], Default::default());
+        let refs = p
+            .references(&uri, Position::new(7, 4), true)
+            .expect("references");
+        let lines: Vec<u32> = refs.iter().map(|l| l.range.start.line).collect();
+        assert_eq!(lines, [1, 5, 7, 7], "{refs:?}");
+        let Ok(edit) = p.rename(&uri, Position::new(5, 4), "level") else {
+            panic!("renamed");
+        };
+        let n: usize = edit.changes.iter().flatten().map(|(_, e)| e.len()).sum();
+        assert_eq!(n, 4);
+    }
 }

@@ -819,4 +819,19 @@ mod tests {
         let n: usize = edit.changes.iter().flatten().map(|(_, e)| e.len()).sum();
         assert_eq!(n, 4);
     }
+
+    #[test]
+    fn standard_functions_and_blocks_are_not_renamed() {
+        let text = "PROGRAM P\nVAR\n    t : TON;\n    x : INT;\nEND_VAR\n    x := MAX(x, 2);\n    t(IN := TRUE, PT := T#1s);\nEND_PROGRAM\n";
+        let uri = "file:///p.st".to_string();
+        let p = Project::analyse(vec![(uri.clone(), text.into())], Default::default());
+        for (line, ch, what) in [(5, 10, "MAX"), (2, 9, "TON"), (6, 7, "IN")] {
+            match p.rename(&uri, Position::new(line, ch), "other") {
+                Err(RenameError::Refused(m)) => assert!(m.contains(what), "{m}"),
+                Err(RenameError::Invalid(m)) => panic!("{what}: {m}"),
+                Ok(e) => panic!("{what} renamed: {e:?}"),
+            }
+        }
+        assert!(p.rename(&uri, Position::new(3, 4), "y").is_ok());
+    }
 }

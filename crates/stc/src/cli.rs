@@ -132,9 +132,16 @@ struct Common {
     /// Diagnostics format.
     #[arg(long = "message-format", value_enum, default_value_t = Format::Human)]
     message_format: Format,
-    /// `-W error`: treat warnings as errors.
-    #[arg(short = 'W', value_enum, value_name = "error")]
-    warnings: Vec<WarningLevel>,
+    /// `-W error`: treat warnings as errors; `-W LINT`: report a lint
+    /// (its name or code) as a warning.
+    #[arg(short = 'W', value_name = "error|LINT")]
+    warnings: Vec<String>,
+    /// `-A LINT`: do not report a lint.
+    #[arg(short = 'A', value_name = "LINT")]
+    allow: Vec<String>,
+    /// `-D LINT`: report a lint as an error.
+    #[arg(short = 'D', value_name = "LINT")]
+    deny: Vec<String>,
     /// Language edition [default: the manifest's, else iec3].
     #[arg(long, value_enum)]
     std: Option<Std>,
@@ -149,11 +156,6 @@ enum Format {
     Human,
     Json,
     Sarif,
-}
-
-#[derive(ValueEnum, Clone, Copy, Debug)]
-enum WarningLevel {
-    Error,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug)]
@@ -182,14 +184,14 @@ enum Emit {
 impl Common {
     /// The options, from the command line and the manifest (the command
     /// line wins).
-    fn options_with(&self, manifest: Option<&Manifest>) -> Options {
+    fn options_with(&self, manifest: Option<&Manifest>) -> Result<Options, Outcome> {
         let mut opts = Options {
             format: match self.message_format {
                 Format::Human => MessageFormat::Human,
                 Format::Json => MessageFormat::Json,
                 Format::Sarif => MessageFormat::Sarif,
             },
-            warnings_as_errors: !self.warnings.is_empty(),
+            warnings_as_errors: self.warnings.iter().any(|w| w == "error"),
             language: stc_pipeline::Options {
                 iec2: match (self.std, manifest) {
                     (Some(s), _) => matches!(s, Std::Iec2),
@@ -207,8 +209,33 @@ impl Common {
             for &c in &m.deny {
                 opts.denied.insert(c);
             }
+            opts.lints = m.lints;
         }
-        opts
+        // The command line wins over the manifest, the later option over
+        // the earlier (as rustc's -A/-W/-D).
+        let words = [
+            (&self.allow, stc_lint::Level::Allow),
+            (&self.warnings, stc_lint::Level::Warn),
+            (&self.deny, stc_lint::Level::Deny),
+        ];
+        for (list, level) in words {
+            for w in list.iter().filter(|w| *w != "error") {
+                match stc_lint::find(w) {
+                    Some(l) => opts.lints.set(l.code, level),
+                    None => {
+                        return Err(usage_error(format!(
+                            "unknown lint `{w}` (the lints: {})",
+                            stc_lint::LINTS
+                                .iter()
+                                .map(|l| l.name)
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        )))
+                    }
+                }
+            }
+        }
+        Ok(opts)
     }
 
     /// The manifest to use: the one named by `--manifest-path`, else, when
@@ -240,7 +267,7 @@ impl Common {
         tests: bool,
     ) -> Result<(Vec<PathBuf>, Options, Option<Manifest>), Outcome> {
         let manifest = self.manifest(&files)?;
-        let opts = self.options_with(manifest.as_ref());
+        let opts = self.options_with(manifest.as_ref())?;
         let files = match (&manifest, files.is_empty()) {
             (Some(m), true) => m.files(tests).map_err(usage_error)?,
             _ => files,
@@ -419,7 +446,8 @@ fn run(cli: Cli) -> Outcome {
             };
             match sources::load(&files) {
                 Ok((sm, diags)) => {
-                    let a = stc_pipeline::analyse(sm, diags, &opts.language);
+                    let a =
+                        stc_pipeline::analyse_linted(sm, diags, &opts.language, Some(&opts.lints));
                     let out = finish_with(
                         &a.all_diagnostics(),
                         &a.parsed.sources,

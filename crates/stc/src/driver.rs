@@ -24,6 +24,9 @@ pub struct Options {
     pub allowed: CodeSet,
     /// Warnings reported as errors (`deny` in stc.toml).
     pub denied: CodeSet,
+    /// The level of each lint (`[lints]` in stc.toml, `-W`/`-A`/`-D`);
+    /// only `stc check` runs the lints.
+    pub lints: stc_lint::Levels,
 }
 
 /// A set of diagnostic codes.

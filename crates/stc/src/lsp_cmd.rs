@@ -40,9 +40,10 @@ fn path_of(uri: &str) -> Option<PathBuf> {
     Some(PathBuf::from(String::from_utf8(bytes).ok()?))
 }
 
-/// The files of the workspace the editor opened.
+/// The files of the workspace the editor opened, and the lint levels of
+/// its manifest.
 #[allow(deprecated)]
-fn workspace(init: &lsp_types::InitializeParams) -> Vec<(String, String)> {
+fn workspace(init: &lsp_types::InitializeParams) -> stc_lsp::Found {
     let root = init
         .workspace_folders
         .as_ref()
@@ -51,19 +52,25 @@ fn workspace(init: &lsp_types::InitializeParams) -> Vec<(String, String)> {
         .or_else(|| init.root_uri.as_ref().map(|u| u.as_str().to_string()))
         .and_then(|u| path_of(&u));
     let Some(root) = root else {
-        return Vec::new();
+        return stc_lsp::Found::default();
     };
-    let files = match manifest::find(&root).map(|m| manifest::load(&m)) {
+    let manifest = manifest::find(&root).map(|m| manifest::load(&m));
+    let lints = match &manifest {
+        Some(Ok(m)) => m.lints,
+        _ => stc_lint::Levels::default(),
+    };
+    let files = match &manifest {
         Some(Ok(m)) => m.files(true).unwrap_or_default(),
         _ => crate::sources::expand(&[root]).unwrap_or_default(),
     };
-    files
+    let files = files
         .into_iter()
         .filter_map(|p| {
             let bytes = std::fs::read(&p).ok()?;
             Some((file_uri(&p), crate::sources::decode(bytes).0))
         })
-        .collect()
+        .collect();
+    stc_lsp::Found { files, lints }
 }
 
 /// Serves on stdin/stdout until the editor shuts the server down.

@@ -18,6 +18,10 @@
 //! allow = ["W0104"]             # warnings not reported
 //! deny = ["W0401"]              # warnings reported as errors
 //!
+//! [lints]                       # each lint's level: allow, warn or deny
+//! case-without-else = "warn"    # by name (docs/diagnostics.md) ...
+//! L0001 = "deny"                # ... or by code
+//!
 //! [run]
 //! program = "Main"              # or config = "Plant"
 //! tick = "10ms"
@@ -41,6 +45,8 @@ struct Raw {
     diagnostics: Option<RawDiagnostics>,
     run: Option<RawRun>,
     test: Option<RawTest>,
+    /// Lint levels by lint name or code: `case-without-else = "warn"`.
+    lints: Option<std::collections::BTreeMap<toml::Spanned<String>, toml::Spanned<String>>>,
 }
 
 #[derive(Deserialize)]
@@ -104,6 +110,8 @@ pub struct Manifest {
     pub warnings: WarningLevel,
     pub allow: Vec<Code>,
     pub deny: Vec<Code>,
+    /// The lints' levels: each lint's default, then `[lints]`.
+    pub lints: stc_lint::Levels,
     pub run: RunSettings,
 }
 
@@ -225,6 +233,34 @@ pub fn parse(text: &str, name: &str, root: PathBuf) -> Result<Manifest, Manifest
         ),
         None => (WarningLevel::Warn, Vec::new(), Vec::new()),
     };
+    let mut lints = stc_lint::Levels::default();
+    for (key, value) in raw.lints.unwrap_or_default() {
+        let Some(lint) = stc_lint::find(key.get_ref()) else {
+            return Err(at(
+                key.span().start,
+                &format!(
+                    "unknown lint `{}` (the lints: {})",
+                    key.get_ref(),
+                    stc_lint::LINTS
+                        .iter()
+                        .map(|l| l.name)
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            ));
+        };
+        let Some(level) = stc_lint::Level::parse(value.get_ref()) else {
+            return Err(at(
+                value.span().start,
+                &format!(
+                    "bad level `{}` for lint `{}`: allow, warn or deny",
+                    value.get_ref(),
+                    key.get_ref()
+                ),
+            ));
+        };
+        lints.set(lint.code, level);
+    }
     let run = match raw.run {
         Some(r) => {
             if r.config.is_some() && r.program.is_some() {
@@ -259,6 +295,7 @@ pub fn parse(text: &str, name: &str, root: PathBuf) -> Result<Manifest, Manifest
         warnings,
         allow,
         deny,
+        lints,
         run,
     })
 }
@@ -443,6 +480,23 @@ mod tests {
         assert_eq!(m.run.config.as_deref(), Some("Plant"));
         assert_eq!(m.run.cycles, Some(5));
         assert_eq!(m.test_sources, vec!["t/*.st".to_string()]);
+        assert_eq!(m.lints, stc_lint::Levels::default());
+    }
+
+    #[test]
+    fn lint_levels_by_name_or_code() {
+        let m = parse(
+            "[lints]\ncase-without-else = \"warn\"\nL0002 = \"allow\"\nreal_equality = \"deny\"\n",
+            "stc.toml",
+            PathBuf::from("."),
+        )
+        .unwrap();
+        use stc_lint::Level;
+        assert_eq!(m.lints.get(Code::L0006), Level::Warn);
+        assert_eq!(m.lints.get(Code::L0002), Level::Allow);
+        assert_eq!(m.lints.get(Code::L0007), Level::Deny);
+        assert_eq!(m.lints.get(Code::L0001), Level::Allow);
+        assert_eq!(m.lints.get(Code::L0003), Level::Warn);
     }
 
     #[test]
@@ -460,8 +514,12 @@ mod tests {
         );
         let e = err("[diagnostics]\n\ndeny = [\"E0301\"]\n");
         assert!(e.starts_with("stc.toml:3: E0301 is an error"), "{e}");
-        let e = err("[lints]\nx = 1\n");
-        assert!(e.starts_with("stc.toml:1: unknown field `lints`"), "{e}");
+        let e = err("[lints]\nx = \"warn\"\n");
+        assert!(e.starts_with("stc.toml:2: unknown lint `x`"), "{e}");
+        let e = err("[lints]\n\ncase-without-else = \"loud\"\n");
+        assert!(e.starts_with("stc.toml:3: bad level `loud`"), "{e}");
+        let e = err("[lints]\nmagic-number = 1\n");
+        assert!(e.starts_with("stc.toml:2:"), "{e}");
         let e = err("[run]\ncycles = -1\n");
         assert!(e.starts_with("stc.toml:2:"), "{e}");
     }

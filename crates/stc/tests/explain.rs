@@ -45,6 +45,23 @@ fn compile(name: &str, text: &str) -> Vec<(u32, String)> {
     keys(&c.diagnostics, &c.sources)
 }
 
+/// A lint's example is checked with that lint on and every other off.
+fn compile_linted(name: &str, text: &str, lint: Code) -> Vec<(u32, String)> {
+    let mut sm = SourceMap::new();
+    let _ = sm.add(name, text.to_string());
+    let mut levels = stc_lint::Levels::all(stc_lint::Level::Allow);
+    levels.set(lint, stc_lint::Level::Warn);
+    let a = stc_pipeline::with_big_stack(move || {
+        stc_pipeline::analyse_linted(
+            sm,
+            Vec::new(),
+            &stc_pipeline::Options::default(),
+            Some(&levels),
+        )
+    });
+    keys(&a.all_diagnostics(), &a.parsed.sources)
+}
+
 /// The line of `text` marked `// CODE` (1-based).
 fn marked_line(text: &str, code: Code) -> Option<u32> {
     let marker = format!("// {code}");
@@ -58,13 +75,17 @@ fn check_example(code: Code) -> Result<(), String> {
         return Err("no example, and not listed in NO_EXAMPLE".into());
     };
     let line = marked_line(ex.wrong, code).ok_or("the wrong text marks no line")?;
-    let wrong = compile("wrong.st", ex.wrong);
+    let run = |name: &str, text: &str| match stc_lint::of_code(code) {
+        Some(_) => compile_linted(name, text, code),
+        None => compile(name, text),
+    };
+    let wrong = run("wrong.st", ex.wrong);
     if wrong != [(line, code.to_string())] {
         return Err(format!(
             "the wrong text gives {wrong:?}, expected [({line}, {code:?})]"
         ));
     }
-    let right = compile("right.st", ex.right);
+    let right = run("right.st", ex.right);
     if !right.is_empty() {
         return Err(format!("the right text gives {right:?}"));
     }

@@ -136,3 +136,45 @@ fn warning_levels_from_the_manifest() {
     assert_eq!(o.status, 1, "{o:?}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn lint_levels_from_the_manifest_and_the_command_line() {
+    let dir = temp_dir("lints");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("a.st"),
+        "PROGRAM P\n    VAR_INPUT\n        mode : INT;\n    END_VAR\n    VAR_OUTPUT\n        x : INT;\n    END_VAR\n    CASE mode OF\n        0: x := 0;\n    END_CASE;\nEND_PROGRAM\n",
+    )
+    .unwrap();
+    let manifest = dir.join("stc.toml");
+    let m = manifest.to_str().unwrap();
+    std::fs::write(&manifest, "").unwrap();
+    // CASE without ELSE is off by default.
+    let o = stc::cli::run_args(&["stc", "check", "--manifest-path", m]);
+    assert_eq!((o.status, o.stderr.as_str()), (0, ""), "{o:?}");
+    std::fs::write(&manifest, "[lints]\ncase-without-else = \"warn\"\n").unwrap();
+    let o = stc::cli::run_args(&["stc", "check", "--manifest-path", m]);
+    assert_eq!(o.status, 0, "{o:?}");
+    assert!(o.stderr.contains("warning[L0006]"), "{}", o.stderr);
+    std::fs::write(&manifest, "[lints]\nL0006 = \"deny\"\n").unwrap();
+    let o = stc::cli::run_args(&["stc", "check", "--manifest-path", m]);
+    assert_eq!(o.status, 1, "{o:?}");
+    assert!(o.stderr.contains("error[L0006]"), "{}", o.stderr);
+    // The command line wins.
+    let o = stc::cli::run_args(&["stc", "check", "--manifest-path", m, "-A", "L0006"]);
+    assert_eq!((o.status, o.stderr.as_str()), (0, ""), "{o:?}");
+    // A bad key or level names the line (exit 2).
+    std::fs::write(
+        &manifest,
+        "[project]\nname = \"p\"\n\n[lints]\ncase-without = \"warn\"\n",
+    )
+    .unwrap();
+    let o = stc::cli::run_args(&["stc", "check", "--manifest-path", m]);
+    assert_eq!(o.status, 2, "{o:?}");
+    assert!(
+        o.stderr.contains("stc.toml:5: unknown lint `case-without`"),
+        "{}",
+        o.stderr
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

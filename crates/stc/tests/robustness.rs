@@ -36,6 +36,17 @@ fn empty_and_comment_only_files_are_valid() {
         "comments",
         b"(* nothing (* here *) *)\n// at all\n/* really */\n",
     );
+    // Valid; the nested comment is only the lint's business (L0008).
+    assert_eq!(out.status, 0, "{}", out.stderr);
+    assert!(
+        out.stderr.contains("warning[L0008]") && out.stderr.contains("1 warning"),
+        "{}",
+        out.stderr
+    );
+    let out = check_bytes(
+        "flat-comments",
+        b"(* nothing here *)\n// at all\n/* really */\n",
+    );
     assert_eq!((out.status, out.stderr.as_str()), (0, ""));
 }
 

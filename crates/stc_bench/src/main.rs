@@ -119,6 +119,16 @@ fn main() {
         netlist(lines);
         return;
     }
+    // `stc-bench lsp LINES`: where the time of the language server's
+    // analysis after an edit goes, phase by phase (docs/benchmarks.md).
+    if args.get(1).map(|s| s.as_str()) == Some("lsp") {
+        let lines: usize = args
+            .get(2)
+            .and_then(|n| n.replace('_', "").parse().ok())
+            .unwrap_or(100_000);
+        lsp_phases(lines);
+        return;
+    }
     if args.get(1).map(|s| s.as_str()) == Some("vm") {
         let cycles: u64 = args.get(2).and_then(|n| n.parse().ok()).unwrap_or(200);
         vm::run_kernels(cycles, args.get(3).map(|s| s.as_str()));
@@ -191,6 +201,90 @@ fn generate_checked(lines: usize) -> String {
         diags.first()
     );
     src
+}
+
+/// Times, for edits of a small file next to a generated project, each
+/// phase of what the language server does after an edit: the incremental
+/// parse of the edited file and the prelude, the analysis, the lints, the
+/// lowering and layout (for E0901, when there is no error), dropping the
+/// previous lowered module.
+fn lsp_phases(lines: usize) {
+    use stc_pipeline::incremental;
+    let big = stc_bench::generate(lines);
+    let ok =
+        "PROGRAM Edited\n    VAR\n        x : INT;\n    END_VAR\n    x := x + 1;\nEND_PROGRAM\n";
+    let bad = ok.replace("x + 1", "'text'");
+    let opts = stc_pipeline::Options::default();
+    stc_pipeline::with_big_stack(move || {
+        let t = Instant::now();
+        let (mut parsed, mark, _) = incremental::parse_all(
+            vec![("big.st".into(), big), ("edited.st".into(), ok.to_string())],
+            &opts,
+        );
+        println!(
+            "full parse of {} lines: {:.1} ms",
+            lines,
+            t.elapsed().as_secs_f64() * 1e3
+        );
+        let mut old: Option<stc_ir::Module> = None;
+        let ms = |a: Instant, b: Instant| (b - a).as_secs_f64() * 1e3;
+        for i in 0..9 {
+            let text = if i % 2 == 0 {
+                bad.clone()
+            } else {
+                ok.to_string()
+            };
+            let t0 = Instant::now();
+            let (mut p, prelude) =
+                incremental::reparse_last(parsed, mark, "edited.st".into(), text, &opts);
+            let t1 = Instant::now();
+            let mut analysis = stc_sema::analyze(
+                &p.ast,
+                &mut p.interner,
+                &p.sources,
+                Some(prelude),
+                stc_sema::Options { iec2: false },
+            );
+            let t2 = Instant::now();
+            let diags = std::mem::take(&mut analysis.diagnostics);
+            let found = stc_lint::check(
+                &stc_lint::Input {
+                    ast: &p.ast,
+                    analysis: &analysis,
+                    interner: &p.interner,
+                    sources: &p.sources,
+                    prelude,
+                    diagnostics: &diags,
+                },
+                &stc_lint::Levels::default(),
+            );
+            let t3 = Instant::now();
+            let clean = !diags
+                .iter()
+                .chain(p.diagnostics.iter())
+                .any(|d| d.is_error());
+            let module = clean.then(|| {
+                let m = stc_ir::lower(&p.ast, analysis, &p.interner, &p.sources);
+                let _ = stc_ir::layout::Layouts::check(&m);
+                m
+            });
+            let t4 = Instant::now();
+            drop(std::mem::replace(&mut old, module));
+            let t5 = Instant::now();
+            println!(
+                "edit {i} ({}): reparse {:.1} ms, analyse {:.1} ms, lints {:.1} ms ({} found), lower+layout {:.1} ms, drop old module {:.1} ms, total {:.1} ms",
+                if clean { "valid" } else { "error" },
+                ms(t0, t1),
+                ms(t1, t2),
+                ms(t2, t3),
+                found.len(),
+                ms(t3, t4),
+                ms(t4, t5),
+                ms(t0, t5)
+            );
+            parsed = p;
+        }
+    });
 }
 
 /// Times the phases of `stc build --emit netlist` once each.

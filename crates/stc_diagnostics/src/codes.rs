@@ -770,6 +770,73 @@ one transition started together (`TO (a, b)`).";
 "A method of a derived block has the name and signature of a method of its
 base, so it overrides it (a call through the base runs this one), but it is
 not declared OVERRIDE. Write `METHOD OVERRIDE name` to say so.";
+    L0001 Warning "magic number (lint `magic-number`)"
+"A numeric literal other than 0 and 1 in a POU's statements (CASE labels
+are not counted). A number written in the logic says nothing about what it
+is, and when it changes every copy must be found. Declare it once as a
+named constant (`VAR CONSTANT max_level : INT := 950; END_VAR`) and use the
+name (PLCopen coding guidelines). A lint: off by default (`allow`); turn it
+on with `magic-number = \"warn\"` under `[lints]` in stc.toml, or `-W
+magic-number`.";
+    L0002 Warning "direct address in a body (lint `direct-address`)"
+"A directly represented variable (`%IX0.3`, `%QW4`) used in a POU's
+statements. The address says where the signal is wired, not what it
+means, and rewiring means editing the logic. Declare a named variable at
+the address (`start AT %IX0.3 : BOOL;`) and use the name (PLCopen coding
+guidelines). A lint: `warn` by default; its level is set under `[lints]` in
+stc.toml (`direct-address = \"allow\"`).";
+    L0003 Warning "output read before the call (lint `output-before-call`)"
+"An output of a function block instance (`tmr.Q`) is read before the body
+calls the instance, in source order: the value read is the one of the
+previous call (or the initial value in the first cycle), one cycle late.
+Call the instance first, then read its outputs (PLCopen coding
+guidelines). Only instances the POU declares and calls later in the same
+body are checked; reading the instance's own output in its call's
+arguments (`t(IN := NOT t.Q)`, the feedback idiom) is not reported. A
+lint: `warn` by default (`output-before-call` under `[lints]`).";
+    L0004 Warning "variable shadows a global (lint `shadowed-global`)"
+"A variable of a POU (input, output, in-out, VAR or VAR_TEMP) has the name
+of a global variable of the project, so inside the POU the name means the
+local one and the global cannot be reached: a reader easily takes one for
+the other. Rename the local variable (PLCopen coding guidelines). Where
+W0109 already reports the name, this lint says nothing. A lint: `warn` by
+default (`shadowed-global` under `[lints]`).";
+    L0005 Warning "unused input (lint `unused-input`)"
+"A VAR_INPUT of a FUNCTION, FUNCTION_BLOCK or PROGRAM that its body (and
+the block's methods and actions) never refers to: callers give a value
+that changes nothing. Remove the input or use it (PLCopen coding
+guidelines). A block that another block EXTENDS, abstract blocks and
+bodies stc skipped are not checked. A lint: `warn` by default
+(`unused-input` under `[lints]`).";
+    L0006 Warning "CASE without ELSE (lint `case-without-else`)"
+"A CASE statement has no ELSE branch, so a selector value that no label
+names does nothing, silently. Add an ELSE that handles or reports the other
+values (PLCopen coding guidelines). A lint: off by default (`allow`),
+since a CASE over an enumeration that names every value needs no ELSE; turn
+it on with `case-without-else = \"warn\"` under `[lints]`.";
+    L0007 Warning "REAL compared with = (lint `real-equality`)"
+"Two REAL or LREAL values compared with `=` or `<>`. Floating-point results
+are rounded, so values that are equal on paper (0.1 + 0.2 and 0.3) differ
+in the last bit and the comparison is FALSE. Compare the difference with a
+tolerance: `ABS(a - b) < 1.0E-6` (PLCopen coding guidelines). A lint:
+`warn` by default (`real-equality` under `[lints]`).";
+    L0008 Warning "nested comment (lint `nested-comment`)"
+"A `(*` inside a `(* ... *)` comment. stc reads comments nested (each `(*`
+needs its own `*)`), but many tools end the comment at the first `*)`, so
+the same text means different programs in different tools, and a `*)` left
+out hides code. Close the outer comment first or use `//` line comments
+(PLCopen coding guidelines). A lint: `warn` by default (`nested-comment`
+under `[lints]`).";
+    L0009 Warning "assigned on some paths only (lint `assigned-on-some-paths`)"
+"A temporary variable (a VAR_TEMP, or a VAR of a FUNCTION: both start from
+their initial value at every call) is assigned in an IF without ELSE and
+read after the IF before any assignment on every path: when no condition
+holds, the read sees the initial value, which is rarely what was meant.
+Assign the variable before the IF or in an ELSE branch too (PLCopen coding
+guidelines). Variables that keep their value between cycles (VAR of a
+FUNCTION_BLOCK or PROGRAM) are not checked: keeping the old value is
+what such an IF means. A lint: `warn` by default (`assigned-on-some-paths`
+under `[lints]`).";
 }
 
 #[cfg(test)]
@@ -781,9 +848,10 @@ mod tests {
         for &c in Code::ALL {
             let s = c.as_str();
             assert_eq!(s.len(), 5);
-            let expected = match c.severity() {
-                CodeSeverity::Error => 'E',
-                CodeSeverity::Warning => 'W',
+            let expected: &[char] = match c.severity() {
+                CodeSeverity::Error => &['E'],
+                // Lints (`L`) are warnings whose level a project sets.
+                CodeSeverity::Warning => &['W', 'L'],
             };
             assert!(s.starts_with(expected), "{s}");
             assert!(!c.title().is_empty() && c.explanation().len() > 40, "{s}");

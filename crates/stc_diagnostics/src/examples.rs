@@ -4045,6 +4045,243 @@ END_METHOD
 END_FUNCTION_BLOCK
 ",
     ),
+    // Lints (each shown with only its own lint on).
+    (
+        Code::L0001,
+        r"PROGRAM Tank
+VAR_INPUT
+    level : INT;
+END_VAR
+VAR_OUTPUT
+    full : BOOL;
+END_VAR
+    full := level > 950;   // L0001
+END_PROGRAM
+",
+        r"PROGRAM Tank
+VAR_INPUT
+    level : INT;
+END_VAR
+VAR_OUTPUT
+    full : BOOL;
+END_VAR
+VAR CONSTANT
+    max_level : INT := 950;
+END_VAR
+    full := level > max_level;
+END_PROGRAM
+",
+    ),
+    (
+        Code::L0002,
+        r"PROGRAM Pump
+VAR_OUTPUT
+    running : BOOL;
+END_VAR
+    running := %IX0.3;   // L0002
+END_PROGRAM
+",
+        r"PROGRAM Pump
+VAR
+    start AT %IX0.3 : BOOL;
+END_VAR
+VAR_OUTPUT
+    running : BOOL;
+END_VAR
+    running := start;
+END_PROGRAM
+",
+    ),
+    (
+        Code::L0003,
+        r"PROGRAM Blink
+VAR
+    tmr : TON;
+END_VAR
+VAR_OUTPUT
+    lamp : BOOL;
+END_VAR
+    lamp := tmr.Q;   // L0003
+    tmr(IN := NOT lamp, PT := T#1s);
+END_PROGRAM
+",
+        r"PROGRAM Blink
+VAR
+    tmr : TON;
+END_VAR
+VAR_OUTPUT
+    lamp : BOOL;
+END_VAR
+    tmr(IN := NOT lamp, PT := T#1s);
+    lamp := tmr.Q;
+END_PROGRAM
+",
+    ),
+    (
+        Code::L0004,
+        r"VAR_GLOBAL
+    speed : INT;
+END_VAR
+
+FUNCTION Scale : INT
+VAR_INPUT
+    speed : INT;   // L0004
+END_VAR
+    Scale := speed * 2;
+END_FUNCTION
+",
+        r"VAR_GLOBAL
+    speed : INT;
+END_VAR
+
+FUNCTION Scale : INT
+VAR_INPUT
+    value : INT;
+END_VAR
+    Scale := value * 2;
+END_FUNCTION
+",
+    ),
+    (
+        Code::L0005,
+        r"FUNCTION_BLOCK Valve
+VAR_INPUT
+    open : BOOL;
+    force : BOOL;   // L0005
+END_VAR
+VAR_OUTPUT
+    opened : BOOL;
+END_VAR
+    opened := open;
+END_FUNCTION_BLOCK
+",
+        r"FUNCTION_BLOCK Valve
+VAR_INPUT
+    open : BOOL;
+    force : BOOL;
+END_VAR
+VAR_OUTPUT
+    opened : BOOL;
+END_VAR
+    opened := open OR force;
+END_FUNCTION_BLOCK
+",
+    ),
+    (
+        Code::L0006,
+        r"PROGRAM Fan
+VAR_INPUT
+    mode : INT;
+END_VAR
+VAR_OUTPUT
+    speed : INT;
+END_VAR
+    CASE mode OF   // L0006
+        0: speed := 0;
+        1: speed := 100;
+    END_CASE;
+END_PROGRAM
+",
+        r"PROGRAM Fan
+VAR_INPUT
+    mode : INT;
+END_VAR
+VAR_OUTPUT
+    speed : INT;
+END_VAR
+    CASE mode OF
+        0: speed := 0;
+        1: speed := 100;
+    ELSE
+        speed := 0;
+    END_CASE;
+END_PROGRAM
+",
+    ),
+    (
+        Code::L0007,
+        r"PROGRAM Compare
+VAR_INPUT
+    a, b : REAL;
+END_VAR
+VAR_OUTPUT
+    same : BOOL;
+END_VAR
+    same := a = b;   // L0007
+END_PROGRAM
+",
+        r"PROGRAM Compare
+VAR_INPUT
+    a, b : REAL;
+END_VAR
+VAR_OUTPUT
+    same : BOOL;
+END_VAR
+    same := ABS(a - b) < 1.0E-6;
+END_PROGRAM
+",
+    ),
+    (
+        Code::L0008,
+        r"(* Pump control (* version 2 *) *)   // L0008
+PROGRAM Pump
+VAR_INPUT
+    start : BOOL;
+END_VAR
+VAR_OUTPUT
+    running : BOOL;
+END_VAR
+    running := start;
+END_PROGRAM
+",
+        r"(* Pump control, version 2 *)
+PROGRAM Pump
+VAR_INPUT
+    start : BOOL;
+END_VAR
+VAR_OUTPUT
+    running : BOOL;
+END_VAR
+    running := start;
+END_PROGRAM
+",
+    ),
+    (
+        Code::L0009,
+        r"FUNCTION_BLOCK Heater
+VAR_INPUT
+    cold : BOOL;
+END_VAR
+VAR_OUTPUT
+    power : INT;
+END_VAR
+VAR_TEMP
+    level : INT;
+END_VAR
+    IF cold THEN
+        level := 100;
+    END_IF;
+    power := level;   // L0009
+END_FUNCTION_BLOCK
+",
+        r"FUNCTION_BLOCK Heater
+VAR_INPUT
+    cold : BOOL;
+END_VAR
+VAR_OUTPUT
+    power : INT;
+END_VAR
+VAR_TEMP
+    level : INT;
+END_VAR
+    level := 0;
+    IF cold THEN
+        level := 100;
+    END_IF;
+    power := level;
+END_FUNCTION_BLOCK
+",
+    ),
 ];
 
 #[cfg(test)]

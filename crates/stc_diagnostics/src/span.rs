@@ -168,6 +168,17 @@ impl SourceMap {
         Some(id)
     }
 
+    /// Keeps the first `files` files and drops the others, so the next
+    /// file added takes the position the first dropped one had (an editor
+    /// re-reading its last file keeps every span of the files before it).
+    pub fn truncate(&mut self, files: usize) {
+        self.files.truncate(files);
+        self.next_base = self
+            .files
+            .last()
+            .map_or(0, |f| f.base + f.text.len() as u32 + 1);
+    }
+
     pub fn file(&self, id: FileId) -> &SourceFile {
         &self.files[id.0 as usize]
     }

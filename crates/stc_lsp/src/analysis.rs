@@ -12,7 +12,7 @@ use stc_syntax::ast::{
     Item, Pou, PouKind, TypeDecl, TypeSpecKind, VarBlock, VarBlockItems, VarDecl, VarKind,
 };
 use stc_syntax::lexer::{lex, TriviaKind};
-use stc_syntax::token::{ElemType, Keyword, TokenKind};
+use stc_syntax::token::{ElemType, Keyword};
 use stc_syntax::Symbol;
 
 use crate::position;
@@ -23,7 +23,7 @@ pub struct Project {
 
 /// A declaration found for a name.
 #[derive(Clone, Copy)]
-enum Decl<'a> {
+pub(crate) enum Decl<'a> {
     Var(&'a VarDecl, VarKind),
     Pou(&'a Pou),
     Type(&'a TypeDecl),
@@ -31,33 +31,53 @@ enum Decl<'a> {
 }
 
 impl Project {
-    /// Analyses the files (URI, text) as one project.
+    /// Analyses the files (URI, text) as one project, in this order.
     pub fn analyse(files: Vec<(String, String)>, opts: stc_pipeline::Options) -> Project {
+        Project::analyse_with(files, opts, None)
+    }
+
+    /// [`Project::analyse`] with the lints at `lints`: a full analysis,
+    /// what the incremental one must equal.
+    pub fn analyse_with(
+        files: Vec<(String, String)>,
+        opts: stc_pipeline::Options,
+        lints: Option<stc_lint::Levels>,
+    ) -> Project {
         let analysed = stc_pipeline::with_big_stack(move || {
-            let mut sm = SourceMap::new();
-            for (uri, text) in files {
-                sm.add(uri, text);
-            }
-            stc_pipeline::analyse(sm, Vec::new(), &opts)
+            let (parsed, _, prelude) = stc_pipeline::incremental::parse_all(files, &opts);
+            stc_pipeline::analyse_parsed(parsed, prelude, &opts, lints.as_ref())
         });
         Project { analysed }
     }
 
-    fn sources(&self) -> &SourceMap {
+    pub fn from_analysed(analysed: stc_pipeline::Analysed) -> Project {
+        Project { analysed }
+    }
+
+    pub fn into_analysed(self) -> stc_pipeline::Analysed {
+        self.analysed
+    }
+
+    pub(crate) fn analysed_mut(&mut self) -> &mut stc_pipeline::Analysed {
+        &mut self.analysed
+    }
+
+    pub(crate) fn sources(&self) -> &SourceMap {
         &self.analysed.parsed.sources
     }
 
-    fn range(&self, span: Span) -> Option<(String, Range)> {
+    /// Where the standard library prelude is (nothing in it is renamed).
+    pub(crate) fn prelude(&self) -> Span {
+        self.analysed.prelude
+    }
+
+    /// The file (URI) and LSP range of a span.
+    pub(crate) fn range(&self, span: Span) -> Option<(String, Range)> {
         let sm = self.sources();
         let f = sm.file(sm.file_of(span.lo)?);
-        let lo = span.lo.saturating_sub(f.base) as usize;
-        let hi = span.hi.saturating_sub(f.base) as usize;
         Some((
             f.name.clone(),
-            Range::new(
-                position::position(&f.text, lo),
-                position::position(&f.text, hi),
-            ),
+            Range::new(lsp_position(f, span.lo), lsp_position(f, span.hi)),
         ))
     }
 
@@ -103,7 +123,7 @@ impl Project {
     }
 
     /// The position's absolute offset in the source map, and the file's text.
-    fn locate(&self, uri: &str, pos: Position) -> Result<(u32, &str, u32), String> {
+    pub(crate) fn locate(&self, uri: &str, pos: Position) -> Result<(u32, &str, u32), String> {
         let sm = self.sources();
         let f = sm
             .files()
@@ -114,46 +134,20 @@ impl Project {
         Ok((f.base + off as u32, &f.text, f.base))
     }
 
-    fn items(&self) -> &[Item] {
+    pub(crate) fn items(&self) -> &[Item] {
         &self.analysed.parsed.ast.items
     }
 
-    fn spelling(&self, s: Symbol) -> &str {
+    pub(crate) fn spelling(&self, s: Symbol) -> &str {
         self.analysed.parsed.interner.spelling(s)
     }
 
-    /// The identifier under or just before `pos`, with whether a `.` comes
-    /// before it (and the identifier before that dot).
-    fn word_at(&self, text: &str, base: u32, at: u32) -> Option<Word> {
-        let lexed = lex(text, base);
-        let toks = &lexed.tokens;
-        let i = toks
-            .iter()
-            .position(|t| t.lo <= at && at <= t.hi && t.kind != TokenKind::Eof)?;
-        let word = |i: usize| &text[(toks[i].lo - base) as usize..(toks[i].hi - base) as usize];
-        let (i, name) = match toks[i].kind {
-            TokenKind::Ident => (i, Some(word(i).to_string())),
-            TokenKind::Dot => (i + 1, None),
-            _ if i > 0 && toks[i - 1].hi == at && toks[i - 1].kind == TokenKind::Ident => {
-                (i - 1, Some(word(i - 1).to_string()))
-            }
-            _ => return None,
-        };
-        let base_name =
-            (i >= 2 && toks[i - 1].kind == TokenKind::Dot && toks[i - 2].kind == TokenKind::Ident)
-                .then(|| word(i - 2).to_string());
-        Some(Word {
-            name,
-            base: base_name,
-        })
-    }
-
-    fn sym(&self, name: &str) -> Option<Symbol> {
+    pub(crate) fn sym(&self, name: &str) -> Option<Symbol> {
         self.analysed.parsed.interner.get(name)
     }
 
     /// The POU whose span contains `at`.
-    fn pou_at(&self, at: u32) -> Option<&Pou> {
+    pub(crate) fn pou_at(&self, at: u32) -> Option<&Pou> {
         self.items().iter().find_map(|it| match it {
             Item::Pou(p) if p.span.lo <= at && at <= p.span.hi => Some(p),
             _ => None,
@@ -265,21 +259,7 @@ impl Project {
     }
 
     fn lookup(&self, uri: &str, pos: Position) -> Result<Option<(Span, Decl<'_>)>, String> {
-        let (at, text, base) = self.locate(uri, pos)?;
-        let Some(w) = self.word_at(text, base, at) else {
-            return Ok(None);
-        };
-        let Some(name) = w.name.as_deref().and_then(|n| self.sym(n)) else {
-            return Ok(None);
-        };
-        let candidates = match &w.base {
-            Some(b) => self.members(b, at),
-            None => self.visible(at),
-        };
-        Ok(candidates
-            .into_iter()
-            .find(|(s, _, _)| *s == name)
-            .map(|(_, sp, d)| (sp, d)))
+        self.lookup_at(uri, pos)
     }
 
     pub fn definition(&self, uri: &str, pos: Position) -> Result<Option<Location>, String> {
@@ -329,7 +309,7 @@ impl Project {
 
     /// The comment just above a declaration (only white space between), or
     /// after it on the same line.
-    fn doc_comment(&self, span: Span) -> Option<String> {
+    pub(crate) fn doc_comment(&self, span: Span) -> Option<String> {
         let sm = self.sources();
         let f = sm.file(sm.file_of(span.lo)?);
         let lexed = lex(&f.text, f.base);
@@ -540,12 +520,30 @@ impl Project {
     }
 }
 
-struct Word {
-    name: Option<String>,
-    base: Option<String>,
+/// The LSP position (line, UTF-16 units) of an absolute position in a
+/// file, through the file's line table (no scan from the file's start).
+pub(crate) fn lsp_position(f: &stc_diagnostics::SourceFile, pos: u32) -> Position {
+    let off = (pos.saturating_sub(f.base) as usize).min(f.text.len());
+    let starts = f.line_starts();
+    let line = starts
+        .partition_point(|&s| s as usize <= off)
+        .saturating_sub(1);
+    let start = starts.get(line).map_or(0, |&s| s as usize).min(off);
+    let mut end = off;
+    while !f.text.is_char_boundary(end) {
+        end -= 1;
+    }
+    let character = f
+        .text
+        .get(start..end)
+        .unwrap_or("")
+        .chars()
+        .map(|c| c.len_utf16() as u32)
+        .sum();
+    Position::new(line as u32, character)
 }
 
-fn vars_of<'a>(blocks: &'a [VarBlock], out: &mut Vec<(Symbol, Span, Decl<'a>)>) {
+pub(crate) fn vars_of<'a>(blocks: &'a [VarBlock], out: &mut Vec<(Symbol, Span, Decl<'a>)>) {
     for b in blocks {
         if let VarBlockItems::Vars(vs) = &b.items {
             for v in vs {

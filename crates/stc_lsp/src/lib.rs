@@ -4,12 +4,16 @@
 //!
 //! The server keeps the text of every document the editor opened plus the
 //! project's other files (given by the caller, which does the file I/O) and,
-//! after every change, analyses the whole project through `stc_pipeline`
-//! (the same phases as `stc check`, so the same codes and spans) and
-//! publishes the diagnostics of every file. Requests are answered from the
-//! last analysis's syntax tree: document symbols, go to definition, hover
-//! (the declaration and the comment above it), completion (names in scope,
-//! members after `.`, keywords) and formatting through `stc_fmt`.
+//! after every change, analyses the project through `stc_pipeline` (the
+//! same phases as `stc check`, so the same codes and spans, with the lints
+//! at the project's levels) and publishes the diagnostics of the files
+//! that changed. The analysis is incremental where it can be exact
+//! (`workspace`): an edit re-parses only the edited file and the prelude.
+//! Requests are answered from the last analysis's syntax tree and the
+//! document's tokens (`navigate`): document symbols, go to definition,
+//! find references, rename, hover (the declaration and the comment above
+//! it), completion (names in scope, members after `.`, keywords), signature
+//! help, semantic tokens, and formatting through `stc_fmt`.
 //!
 //! Robustness: the parser accepts any text, the phases run on a big stack,
 //! and a position outside a document is answered with an `InvalidParams`
@@ -19,9 +23,11 @@
 //! workspace's files.
 
 mod analysis;
+mod navigate;
 mod position;
+mod workspace;
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::error::Error;
 
 use lsp_server::{Connection, ErrorCode, Message, Notification, Request, RequestId, Response};
@@ -30,20 +36,31 @@ use lsp_types::notification::{
     PublishDiagnostics,
 };
 use lsp_types::request::{
-    Completion, DocumentSymbolRequest, Formatting, GotoDefinition, HoverRequest, Request as _,
+    Completion, DocumentSymbolRequest, Formatting, GotoDefinition, HoverRequest,
+    PrepareRenameRequest, References, Rename, Request as _, SemanticTokensFullRequest,
+    SignatureHelpRequest,
 };
 use lsp_types::{
-    CompletionOptions, HoverProviderCapability, InitializeParams, OneOf, ServerCapabilities,
-    TextDocumentSyncCapability, TextDocumentSyncKind,
+    CompletionOptions, HoverProviderCapability, InitializeParams, OneOf, RenameOptions,
+    SemanticTokens, SemanticTokensFullOptions, SemanticTokensOptions,
+    SemanticTokensServerCapabilities, ServerCapabilities, SignatureHelpOptions,
+    TextDocumentSyncCapability, TextDocumentSyncKind, WorkDoneProgressOptions,
 };
 
 pub use analysis::Project;
+
+pub use workspace::Workspace;
 
 /// The capabilities the server announces.
 pub fn capabilities() -> ServerCapabilities {
     ServerCapabilities {
         text_document_sync: Some(TextDocumentSyncCapability::Kind(TextDocumentSyncKind::FULL)),
         definition_provider: Some(OneOf::Left(true)),
+        references_provider: Some(OneOf::Left(true)),
+        rename_provider: Some(OneOf::Right(RenameOptions {
+            prepare_provider: Some(true),
+            work_done_progress_options: WorkDoneProgressOptions::default(),
+        })),
         hover_provider: Some(HoverProviderCapability::Simple(true)),
         document_symbol_provider: Some(OneOf::Left(true)),
         document_formatting_provider: Some(OneOf::Left(true)),
@@ -51,16 +68,38 @@ pub fn capabilities() -> ServerCapabilities {
             trigger_characters: Some(vec![".".into()]),
             ..CompletionOptions::default()
         }),
+        signature_help_provider: Some(SignatureHelpOptions {
+            trigger_characters: Some(vec!["(".into(), ",".into()]),
+            retrigger_characters: None,
+            work_done_progress_options: WorkDoneProgressOptions::default(),
+        }),
+        semantic_tokens_provider: Some(SemanticTokensServerCapabilities::SemanticTokensOptions(
+            SemanticTokensOptions {
+                legend: navigate::legend(),
+                full: Some(SemanticTokensFullOptions::Bool(true)),
+                range: None,
+                work_done_progress_options: WorkDoneProgressOptions::default(),
+            },
+        )),
         ..ServerCapabilities::default()
     }
 }
 
+/// The project the caller found for the editor's workspace.
+#[derive(Default)]
+pub struct Found {
+    /// Its files (URI, text) that are not open in the editor.
+    pub files: Vec<(String, String)>,
+    /// The lints' levels of its manifest (each lint's default without one).
+    pub lints: stc_lint::Levels,
+}
+
 /// Serves one editor session on `conn`. `workspace` is called once with
-/// the initialize parameters and returns the project's files (URI, text)
-/// that are not open in the editor. Returns after `shutdown` and `exit`.
+/// the initialize parameters and returns the project's files and lint
+/// levels. Returns after `shutdown` and `exit`.
 pub fn serve(
     conn: &Connection,
-    workspace: &dyn Fn(&InitializeParams) -> Vec<(String, String)>,
+    workspace: &dyn Fn(&InitializeParams) -> Found,
     opts: stc_pipeline::Options,
 ) -> Result<(), Box<dyn Error + Send + Sync>> {
     let (id, params) = conn.initialize_start()?;
@@ -70,11 +109,13 @@ pub fn serve(
         "serverInfo": { "name": "stc", "version": env!("CARGO_PKG_VERSION") },
     });
     conn.initialize_finish(id, result)?;
+    let found = workspace(&init);
     let mut server = Server {
-        files: workspace(&init).into_iter().collect(),
-        project: None,
+        workspace: Workspace::new(found.files, opts, Some(found.lints)),
         opts,
-        published: Vec::new(),
+        touched: BTreeSet::new(),
+        published: BTreeMap::new(),
+        analysed_once: false,
     };
     for msg in &conn.receiver {
         match msg {
@@ -94,18 +135,29 @@ pub fn serve(
             }
             Message::Response(_) => {}
         }
+        // With nothing waiting, the rest of the analysis (lowering, the
+        // memory layout's E0901) and freeing what is out of date.
+        if conn.receiver.is_empty() {
+            for m in server.finish_and_publish() {
+                conn.sender.send(Message::Notification(m))?;
+            }
+        }
     }
     Ok(())
 }
 
 struct Server {
-    /// Every file of the project by URI: open documents (the editor's text)
-    /// and the workspace's other files.
-    files: BTreeMap<String, String>,
-    project: Option<Project>,
+    /// Every file of the project: open documents (the editor's text) and
+    /// the workspace's other files, with the last analysis.
+    workspace: Workspace,
     opts: stc_pipeline::Options,
-    /// URIs that had diagnostics in the last publication (to clear them).
-    published: Vec<String>,
+    /// Documents the editor changed (or opened) since the last publication:
+    /// their diagnostics are published even when they did not change.
+    touched: BTreeSet<String>,
+    /// The diagnostics last published for each file that had some.
+    published: BTreeMap<String, Vec<lsp_types::Diagnostic>>,
+    /// Whether every file's diagnostics were published once.
+    analysed_once: bool,
 }
 
 fn params<T: serde::de::DeserializeOwned>(v: serde_json::Value) -> Result<T, Response> {
@@ -126,10 +178,9 @@ impl Server {
                 if let Ok(p) =
                     serde_json::from_value::<lsp_types::DidOpenTextDocumentParams>(n.params)
                 {
-                    self.files.insert(
-                        p.text_document.uri.as_str().to_string(),
-                        p.text_document.text,
-                    );
+                    let uri = p.text_document.uri.as_str().to_string();
+                    self.touched.insert(uri.clone());
+                    self.workspace.set(uri, p.text_document.text);
                     return true;
                 }
             }
@@ -139,8 +190,9 @@ impl Server {
                 {
                     // Full synchronisation: the last change is the whole text.
                     if let Some(c) = p.content_changes.into_iter().last() {
-                        self.files
-                            .insert(p.text_document.uri.as_str().to_string(), c.text);
+                        let uri = p.text_document.uri.as_str().to_string();
+                        self.touched.insert(uri.clone());
+                        self.workspace.set(uri, c.text);
                         return true;
                     }
                 }
@@ -151,30 +203,47 @@ impl Server {
         false
     }
 
+    /// Analyses the project and publishes the diagnostics of the files the
+    /// editor touched and of every file whose diagnostics changed (all of
+    /// them the first time).
     fn analyse_and_publish(&mut self) -> Vec<Notification> {
-        let files: Vec<(String, String)> = self
-            .files
-            .iter()
-            .map(|(u, t)| (u.clone(), t.clone()))
-            .collect();
-        let project = Project::analyse(files, self.opts);
+        self.workspace.analyse();
+        self.publish()
+    }
+
+    /// Finishes the last analysis; publishes what that changed.
+    fn finish_and_publish(&mut self) -> Vec<Notification> {
+        if self.workspace.finish() {
+            self.publish()
+        } else {
+            Vec::new()
+        }
+    }
+
+    fn publish(&mut self) -> Vec<Notification> {
+        let Some(project) = self.workspace.project() else {
+            return Vec::new();
+        };
         let by_file = project.diagnostics_by_uri();
         let mut out = Vec::new();
-        let mut published = Vec::new();
-        let mut seen = std::collections::BTreeSet::new();
-        // Every file, and the ones that had diagnostics before (to clear
-        // them), once each.
-        for uri in self.files.keys().chain(self.published.iter()) {
-            if !seen.insert(uri) {
+        let touched = std::mem::take(&mut self.touched);
+        let all = !self.analysed_once;
+        self.analysed_once = true;
+        let uris: BTreeSet<&String> = self.workspace.uris().chain(self.published.keys()).collect();
+        let mut published = BTreeMap::new();
+        for uri in uris {
+            let diagnostics = by_file.get(uri).cloned().unwrap_or_default();
+            let before = self.published.get(uri);
+            let changed = before.map_or(!diagnostics.is_empty(), |b| *b != diagnostics);
+            if !diagnostics.is_empty() {
+                published.insert(uri.clone(), diagnostics.clone());
+            }
+            if !(all || changed || touched.contains(uri)) {
                 continue;
             }
             let Ok(u) = uri.parse::<lsp_types::Uri>() else {
                 continue;
             };
-            let diagnostics = by_file.get(uri).cloned().unwrap_or_default();
-            if !diagnostics.is_empty() {
-                published.push(uri.clone());
-            }
             let p = lsp_types::PublishDiagnosticsParams {
                 uri: u,
                 diagnostics,
@@ -183,7 +252,6 @@ impl Server {
             out.push(Notification::new(PublishDiagnostics::METHOD.into(), p));
         }
         self.published = published;
-        self.project = Some(project);
         out
     }
 
@@ -200,7 +268,7 @@ impl Server {
     }
 
     fn dispatch(&mut self, req: Request) -> Result<serde_json::Value, Response> {
-        let project = self.project.as_ref();
+        let project = self.workspace.project();
         let none = || Ok(serde_json::Value::Null);
         match req.method.as_str() {
             GotoDefinition::METHOD => {
@@ -244,13 +312,74 @@ impl Server {
                 let s = project.symbols(p.text_document.uri.as_str());
                 Ok(serde_json::to_value(s).unwrap_or_default())
             }
+            References::METHOD => {
+                let p: lsp_types::ReferenceParams = params(req.params)?;
+                let tp = p.text_document_position;
+                let Some(project) = project else {
+                    return none();
+                };
+                let locs = project
+                    .references(
+                        tp.text_document.uri.as_str(),
+                        tp.position,
+                        p.context.include_declaration,
+                    )
+                    .map_err(invalid)?;
+                Ok(serde_json::to_value(locs).unwrap_or_default())
+            }
+            PrepareRenameRequest::METHOD => {
+                let p: lsp_types::TextDocumentPositionParams = params(req.params)?;
+                let Some(project) = project else {
+                    return none();
+                };
+                let r = project
+                    .prepare_rename(p.text_document.uri.as_str(), p.position)
+                    .map_err(rename_error)?;
+                Ok(serde_json::to_value(r).unwrap_or_default())
+            }
+            Rename::METHOD => {
+                let p: lsp_types::RenameParams = params(req.params)?;
+                let tp = p.text_document_position;
+                let Some(project) = project else {
+                    return none();
+                };
+                let edit = project
+                    .rename(tp.text_document.uri.as_str(), tp.position, &p.new_name)
+                    .map_err(rename_error)?;
+                Ok(serde_json::to_value(edit).unwrap_or_default())
+            }
+            SemanticTokensFullRequest::METHOD => {
+                let p: lsp_types::SemanticTokensParams = params(req.params)?;
+                let Some(project) = project else {
+                    return none();
+                };
+                let data = project
+                    .semantic_tokens(p.text_document.uri.as_str())
+                    .map_err(invalid)?;
+                Ok(serde_json::to_value(SemanticTokens {
+                    result_id: None,
+                    data,
+                })
+                .unwrap_or_default())
+            }
+            SignatureHelpRequest::METHOD => {
+                let p: lsp_types::SignatureHelpParams = params(req.params)?;
+                let tp = p.text_document_position_params;
+                let Some(project) = project else {
+                    return none();
+                };
+                let h = project
+                    .signature_help(tp.text_document.uri.as_str(), tp.position)
+                    .map_err(invalid)?;
+                Ok(serde_json::to_value(h).unwrap_or_default())
+            }
             Formatting::METHOD => {
                 let p: lsp_types::DocumentFormattingParams = params(req.params)?;
                 let uri = p.text_document.uri.as_str();
-                let Some(text) = self.files.get(uri) else {
+                let Some(text) = self.workspace.text(uri) else {
                     return Err(invalid(format!("unknown document {uri}")));
                 };
-                let text = text.clone();
+                let text = text.to_string();
                 let fmt = stc_fmt::Options {
                     indent_width: p.options.tab_size.clamp(1, 16) as usize,
                     iec2: self.opts.iec2,
@@ -291,4 +420,13 @@ fn invalid(msg: impl std::fmt::Display) -> Response {
         ErrorCode::InvalidParams as i32,
         msg.to_string(),
     )
+}
+
+fn rename_error(e: navigate::RenameError) -> Response {
+    match e {
+        navigate::RenameError::Invalid(m) => invalid(m),
+        navigate::RenameError::Refused(m) => {
+            Response::new_err(RequestId::from(0), ErrorCode::RequestFailed as i32, m)
+        }
+    }
 }

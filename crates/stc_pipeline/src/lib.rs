@@ -28,6 +28,10 @@
 //! language server must do the same for each request, a default 2 MiB
 //! thread is not enough for the deepest inputs the parser accepts).
 
+pub mod incremental;
+
+pub use stc_ir::Module;
+
 use stc_diagnostics::{Diagnostic, SourceMap, Span};
 use stc_syntax::ast::Ast;
 use stc_syntax::Interner;
@@ -127,12 +131,59 @@ pub fn compile_text(name: &str, text: &str, opts: &Options) -> Compiled {
 /// (so `stc check` reports a declaration too large for the memory model,
 /// E0901, as every back end would: the layout is computed once, in stc_ir).
 /// `diagnostics` are kept first.
-pub fn analyse(mut sources: SourceMap, diagnostics: Vec<Diagnostic>, opts: &Options) -> Analysed {
+pub fn analyse(sources: SourceMap, diagnostics: Vec<Diagnostic>, opts: &Options) -> Analysed {
+    analyse_linted(sources, diagnostics, opts, None)
+}
+
+/// [`analyse`], then the lints at `lints` on the analysed program
+/// (`stc check` and the language server; the other commands do not lint,
+/// so their output never changes with a lint). The lints' findings come
+/// after the analyser's and do not decide whether the project is lowered.
+pub fn analyse_linted(
+    mut sources: SourceMap,
+    diagnostics: Vec<Diagnostic>,
+    opts: &Options,
+    lints: Option<&stc_lint::Levels>,
+) -> Analysed {
     let prelude_id = sources
         .add(stc_sema::prelude::PRELUDE_NAME, stc_sema::prelude::source())
         .expect("the prelude fits in the position space");
     let prelude = sources.file(prelude_id).span();
-    let mut parsed = parse(sources, diagnostics, opts);
+    let parsed = parse(sources, diagnostics, opts);
+    analyse_parsed(parsed, prelude, opts, lints)
+}
+
+/// Analyses a project parsed with the prelude (at `prelude`) and lints it
+/// with `lints`: the second half of [`analyse_linted`], for a caller that
+/// parsed the files itself ([`incremental`]).
+pub fn analyse_parsed(
+    parsed: Parsed,
+    prelude: Span,
+    opts: &Options,
+    lints: Option<&stc_lint::Levels>,
+) -> Analysed {
+    let (mut a, pending) = check_parsed(parsed, prelude, opts, lints);
+    lay_out(&mut a, pending);
+    a
+}
+
+/// The analysis of a project, waiting to be lowered and laid out when it
+/// has no error ([`lay_out`]).
+pub struct Pending {
+    analysis: stc_sema::Analysis,
+    clean: bool,
+}
+
+/// [`analyse_parsed`] up to the lints: the analyser's diagnostics, then the
+/// lints', and what [`lay_out`] needs to lower the project and check its
+/// memory layout (E0901) when the analysis found no error. A language
+/// server publishes the diagnostics of this step first.
+pub fn check_parsed(
+    mut parsed: Parsed,
+    prelude: Span,
+    opts: &Options,
+    lints: Option<&stc_lint::Levels>,
+) -> (Analysed, Pending) {
     let mut analysis = stc_sema::analyze(
         &parsed.ast,
         &mut parsed.interner,
@@ -146,18 +197,55 @@ pub fn analyse(mut sources: SourceMap, diagnostics: Vec<Diagnostic>, opts: &Opti
         .iter()
         .chain(diagnostics.iter())
         .any(|d| d.is_error());
-    let module = clean.then(|| {
-        let m = stc_ir::lower(&parsed.ast, analysis, &parsed.interner, &parsed.sources);
-        diagnostics.extend(stc_ir::layout::Layouts::check(&m));
-        m
-    });
-    let module = module.filter(|_| !diagnostics.iter().any(|d| d.is_error()));
-    Analysed {
+    if let Some(levels) = lints {
+        let said: Vec<Diagnostic> = parsed
+            .diagnostics
+            .iter()
+            .chain(diagnostics.iter())
+            .cloned()
+            .collect();
+        let found = stc_lint::check(
+            &stc_lint::Input {
+                ast: &parsed.ast,
+                analysis: &analysis,
+                interner: &parsed.interner,
+                sources: &parsed.sources,
+                prelude,
+                diagnostics: &said,
+            },
+            levels,
+        );
+        diagnostics.extend(found);
+    }
+    let a = Analysed {
         parsed,
         diagnostics,
-        module,
+        module: None,
         prelude,
+    };
+    (a, Pending { analysis, clean })
+}
+
+/// Lowers a project [`check_parsed`] found no error in and lays its memory
+/// out: its diagnostics get E0901 where a declaration is too large for the
+/// memory model, and it gets its module when nothing is. Returns whether
+/// diagnostics were added. (A project with errors is left as it is.)
+pub fn lay_out(a: &mut Analysed, pending: Pending) -> bool {
+    if !pending.clean {
+        return false;
     }
+    let m = stc_ir::lower(
+        &a.parsed.ast,
+        pending.analysis,
+        &a.parsed.interner,
+        &a.parsed.sources,
+    );
+    let layout = stc_ir::layout::Layouts::check(&m);
+    let fits = !layout.iter().any(|d| d.is_error());
+    let added = !layout.is_empty();
+    a.diagnostics.extend(layout);
+    a.module = fits.then_some(m);
+    added
 }
 
 /// The IR of an analysed project without errors.

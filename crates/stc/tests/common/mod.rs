@@ -72,7 +72,7 @@ pub fn annotations(file: &str, text: &str) -> Vec<Key> {
             let up = after.chars().take_while(|&c| c == '^').count();
             for word in after[up..].split_whitespace() {
                 let is_code = word.len() == 5
-                    && (word.starts_with('E') || word.starts_with('W'))
+                    && (word.starts_with('E') || word.starts_with('W') || word.starts_with('L'))
                     && word[1..].bytes().all(|b| b.is_ascii_digit());
                 if !is_code {
                     break;

@@ -32,6 +32,12 @@ impl<'a> Sema<'a> {
     fn register(&mut self, name: Ident, what: GlobalName) -> bool {
         if let Some(prev) = self.names.get(&name.sym).copied() {
             let prev_span = self.global_name_span(prev);
+            if self.in_prelude(name.span)
+                && crate::prelude::WEAK.contains(&self.interner.key(name.sym))
+            {
+                // A vendor library name the user declares: the user's.
+                return false;
+            }
             if let Some(user) = prev_span.filter(|_| self.in_prelude(name.span)) {
                 // The user's declaration came first; the standard one is
                 // not the user's to see: report the user's.

@@ -30,8 +30,20 @@ pub fn source() -> String {
     for (suffix, ty) in [("", "TIME"), ("_LTIME", "LTIME")] {
         s.push_str(&timers(suffix, ty));
     }
+    s.push_str(VENDOR);
     s
 }
+
+/// Names of vendor system libraries that real code uses without declaring
+/// them (TwinCAT's Tc2_System, which every TwinCAT project references):
+/// *weak* declarations, which a declaration of the user's of the same name
+/// replaces without a word ([`WEAK`]).
+const VENDOR: &str = r#"
+TYPE T_MaxString : STRING(255); END_TYPE
+"#;
+
+/// The keys (upper case) of the prelude's weak declarations.
+pub const WEAK: &[&str] = &["T_MAXSTRING"];
 
 const FIXED: &str = r#"
 FUNCTION_BLOCK SR

@@ -23,6 +23,9 @@ enum Block {
     Pou,
     /// A METHOD of a function block (its words are identifiers).
     Method,
+    /// A PROPERTY of a function block, and its GET or SET (identifiers).
+    Property,
+    Accessor,
     Type,
     Struct,
     Var,
@@ -409,6 +412,25 @@ impl<'a> Layout<'a> {
                 forced = Some(self.body_level());
                 push = Some(Block::Method);
             }
+            TokenKind::Ident if self.opens_property(i) => {
+                forced = Some(self.body_level());
+                push = Some(Block::Property);
+            }
+            TokenKind::Ident if self.opens_accessor(i) => {
+                if let Some(f) = self.stack.last_mut() {
+                    f.header = false;
+                }
+                forced = Some(self.body_level());
+                push = Some(Block::Accessor);
+            }
+            TokenKind::Ident if self.closes_property_part(i).is_some() => {
+                let b = self.closes_property_part(i);
+                if let Some(pos) = self.stack.iter().rposition(|f| Some(f.block) == b) {
+                    let f = self.stack[pos];
+                    self.stack.truncate(pos);
+                    forced = Some(f.indent);
+                }
+            }
             TokenKind::Ident if self.closes_method(i) => {
                 if let Some(pos) = self.stack.iter().rposition(|f| f.block == Block::Method) {
                     let f = self.stack[pos];
@@ -533,6 +555,17 @@ impl<'a> Layout<'a> {
             TokenKind::Ident if self.src(i).eq_ignore_ascii_case("END_METHOD") => {
                 self.stmt_end(Pending::BreakUnlessSemi)
             }
+            TokenKind::Ident
+                if ["END_GET", "END_SET", "END_PROPERTY"]
+                    .iter()
+                    .any(|w| self.src(i).eq_ignore_ascii_case(w)) =>
+            {
+                self.stmt_end(Pending::BreakUnlessSemi)
+            }
+            TokenKind::Ident if push == Some(Block::Accessor) => {
+                // `GET` / `SET`: the accessor's body starts on the next line.
+                self.end_header();
+            }
             TokenKind::Ident if self.closes_class(i) => self.stmt_end(Pending::BreakUnlessSemi),
             _ => {}
         }
@@ -628,6 +661,47 @@ impl<'a> Layout<'a> {
             && self.stack.iter().any(|f| f.block == Block::Pou)
     }
 
+    /// `PROPERTY` starting a property of the function block being laid
+    /// out (followed by its name or a modifier).
+    fn opens_property(&self, i: usize) -> bool {
+        self.src(i).eq_ignore_ascii_case("PROPERTY")
+            && self.stack.last().is_some_and(|f| f.block == Block::Pou)
+            && self.at_stmt_start
+            && self
+                .toks
+                .get(i + 1)
+                .is_some_and(|t| t.kind == TokenKind::Ident)
+    }
+
+    /// `GET` or `SET` starting an accessor of the property being laid out.
+    fn opens_accessor(&self, i: usize) -> bool {
+        // (On the PROPERTY's own line too; a property named GET is
+        // followed by its `:`.)
+        (self.src(i).eq_ignore_ascii_case("GET") || self.src(i).eq_ignore_ascii_case("SET"))
+            && self
+                .stack
+                .last()
+                .is_some_and(|f| f.block == Block::Property && (f.header || self.at_stmt_start))
+            && self
+                .toks
+                .get(i + 1)
+                .is_none_or(|t| t.kind != TokenKind::Colon)
+    }
+
+    /// `END_GET`/`END_SET` (an accessor) or `END_PROPERTY` closing what is
+    /// open.
+    fn closes_property_part(&self, i: usize) -> Option<Block> {
+        let word = self.src(i);
+        let b = if word.eq_ignore_ascii_case("END_GET") || word.eq_ignore_ascii_case("END_SET") {
+            Block::Accessor
+        } else if word.eq_ignore_ascii_case("END_PROPERTY") {
+            Block::Property
+        } else {
+            return None;
+        };
+        self.stack.iter().any(|f| f.block == b).then_some(b)
+    }
+
     /// `END_METHOD` closing an open method.
     fn closes_method(&self, i: usize) -> bool {
         self.src(i).eq_ignore_ascii_case("END_METHOD")
@@ -639,7 +713,7 @@ impl<'a> Layout<'a> {
             if f.header
                 && matches!(
                     f.block,
-                    Block::Pou | Block::Method | Block::Config | Block::Resource
+                    Block::Pou | Block::Method | Block::Property | Block::Config | Block::Resource
                 )
             {
                 f.header = false;

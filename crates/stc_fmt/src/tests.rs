@@ -173,3 +173,11 @@ fn classes_and_interfaces_are_blocks() {
         "INTERFACE I EXTENDS J\n    METHOD m : INT\n    END_METHOD\nEND_INTERFACE\n\nCLASS C EXTENDS B IMPLEMENTS I\n    VAR\n        x : INT;\n    END_VAR\n    METHOD PUBLIC m : INT\n        m := x;\n    END_METHOD\nEND_CLASS\n",
     );
 }
+
+#[test]
+fn properties_and_their_accessors_are_blocks() {
+    check(
+        "FUNCTION_BLOCK f VAR x : INT; p : POINTER TO INT; END_VAR\nPROPERTY PUBLIC v : INT GET VAR k : INT; END_VAR v := x + k; END_GET SET x := v; p^ := v; END_SET END_PROPERTY\nx := x + 1; END_FUNCTION_BLOCK",
+        "FUNCTION_BLOCK f\n    VAR\n        x : INT;\n        p : POINTER TO INT;\n    END_VAR\n    PROPERTY PUBLIC v : INT\n        GET\n            VAR\n                k : INT;\n            END_VAR\n            v := x + k;\n        END_GET\n        SET\n            x := v;\n            p^ := v;\n        END_SET\n    END_PROPERTY\n    x := x + 1;\nEND_FUNCTION_BLOCK\n",
+    );
+}

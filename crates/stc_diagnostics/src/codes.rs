@@ -124,8 +124,8 @@ thousands of nested parentheses). Split the expression with intermediate
 variables.";
     E0030 Error "not supported yet"
 "The construct is valid in some IEC 61131-3 dialect but stc does not support
-it yet: PROPERTY outside a function block, chart elements after ST
-statements, the CODESYS REFERENCE TO, UNION types, VAR_STAT/VAR_INST sections, variable-length arrays
+it yet: PROPERTY outside a function block, VAR_INST outside a METHOD,
+chart elements after ST statements, the CODESYS REFERENCE TO, UNION types, variable-length arrays
 (`ARRAY[*]`, `ARRAY[..]`), the `__` operators of CODESYS and TwinCAT
 (`__TRY`, `__NEW`...) and logi.CAD UNIT files. The
 construct is reported once and skipped (or given an unknown type), and

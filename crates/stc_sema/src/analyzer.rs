@@ -152,6 +152,11 @@ pub(crate) struct Sema<'a> {
     pub short_adrs: FxHashSet<ExprId>,
     /// `0` and `NULL` standing for the null pointer.
     pub null_ptrs: FxHashSet<ExprId>,
+    /// VAR_STAT variables: (POU, name) to the global that holds them.
+    pub statics: FxHashMap<(PouId, Symbol), GlobalId>,
+    /// VAR_INST variables: (function block, method name, name) to the
+    /// block's variable that holds them.
+    pub inst_vars: FxHashMap<(PouId, Symbol, Symbol), VarId>,
     /// `p^` of a pointer to an array not indexed with every dimension.
     pub whole_ptr_arrays: Vec<stc_diagnostics::Span>,
 }
@@ -208,6 +213,8 @@ impl<'a> Sema<'a> {
             short_adrs: FxHashSet::default(),
             null_ptrs: FxHashSet::default(),
             whole_ptr_arrays: Vec::new(),
+            statics: FxHashMap::default(),
+            inst_vars: FxHashMap::default(),
         }
     }
 

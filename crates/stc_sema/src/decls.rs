@@ -259,13 +259,67 @@ impl<'a> Sema<'a> {
             def.var_index.insert(p.name.sym, VarId(0));
             src.push(None);
         }
+        // VAR_INST of a method: variables of its block (below); VAR_STAT:
+        // globals of their own (docs/oop.md, "VAR_STAT and VAR_INST").
+        let mut blocks: Vec<(&'a stc_syntax::ast::VarBlock, Option<stc_syntax::Symbol>)> =
+            Vec::new();
         for block in &p.var_blocks {
+            match block.kind {
+                VarKind::Stat => {
+                    for g in self.add_globals(block, GlobalOwner::TopLevel) {
+                        let local = self.globals[g.0 as usize].var.name;
+                        let key = format!(
+                            "{}.{}",
+                            self.interner.spelling(p.name.sym).to_owned(),
+                            self.interner.spelling(local).to_owned()
+                        );
+                        let mangled = self.interner.intern(&key);
+                        self.globals[g.0 as usize].var.name = mangled;
+                        self.statics.insert((id, local), g);
+                    }
+                }
+                VarKind::Inst if method_of.is_some() => {}
+                VarKind::Inst => {
+                    self.emit(
+                        Diagnostic::new(
+                            Code::E0030,
+                            block.span,
+                            "`VAR_INST` outside a METHOD is not supported",
+                        )
+                        .with_label("read as VAR")
+                        .with_help("VAR_INST keeps a METHOD's variables in its instance; in a POU body, use VAR"),
+                    );
+                    blocks.push((block, None));
+                }
+                _ => blocks.push((block, None)),
+            }
+        }
+        if p.kind == PouKind::FunctionBlock && method_of.is_none() {
+            // The VAR_INST variables of its methods, named `method.name`.
+            for m in &p.methods {
+                for block in m.pou.var_blocks.iter().filter(|b| b.kind == VarKind::Inst) {
+                    blocks.push((block, Some(m.pou.name.sym)));
+                }
+            }
+        }
+        for (block, method) in blocks {
             let VarBlockItems::Vars(decls) = &block.items else {
                 continue;
             };
             for decl in decls {
                 for name in &decl.names {
                     let v = VarId(def.vars.len() as u32);
+                    let mut name = *name;
+                    if let Some(m) = method {
+                        let key = format!(
+                            "{}.{}",
+                            self.interner.spelling(m).to_owned(),
+                            self.interner.spelling(name.sym).to_owned()
+                        );
+                        let local = name.sym;
+                        name.sym = self.interner.intern(&key);
+                        self.inst_vars.insert((id, m, local), v);
+                    }
                     if let Some(prev) = def.var_index.get(&name.sym) {
                         let first = def.vars[prev.0 as usize].span;
                         let shown = self.spelled(name.sym, name.span);

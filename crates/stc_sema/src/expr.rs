@@ -824,6 +824,23 @@ impl<'a> Sema<'a> {
                     }
                     return var.ty;
                 }
+                // A VAR_STAT variable (a global of its own), or in a METHOD
+                // a VAR_INST variable (one of its block's).
+                if let Some(&g) = self.statics.get(&(p, id.sym)) {
+                    return self.global_ref(e, g);
+                }
+                if let Some((fb, k)) = self.pous[p.0 as usize].method_of {
+                    let m = self
+                        .pou_ast(fb)
+                        .and_then(|a| a.methods.get(k))
+                        .map(|m| m.pou.name.sym);
+                    if let Some(&v) = m.and_then(|m| self.inst_vars.get(&(fb, m, id.sym))) {
+                        self.ensure_var(fb, v);
+                        self.resolutions.insert(e, Res::FbMember(fb, v));
+                        self.used.insert((fb, v));
+                        return self.pous[fb.0 as usize].var(v).ty;
+                    }
+                }
                 if let Some(t) = self.instance_name(e, id, p) {
                     return t;
                 }

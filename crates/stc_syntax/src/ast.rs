@@ -464,6 +464,10 @@ pub enum VarKind {
     Temp,
     Access,
     Config,
+    /// `VAR_STAT` (CODESYS): one variable for every call and instance.
+    Stat,
+    /// `VAR_INST` of a METHOD (CODESYS): kept in the instance.
+    Inst,
 }
 
 impl VarKind {
@@ -478,6 +482,8 @@ impl VarKind {
             VarKind::Temp => "VAR_TEMP",
             VarKind::Access => "VAR_ACCESS",
             VarKind::Config => "VAR_CONFIG",
+            VarKind::Stat => "VAR_STAT",
+            VarKind::Inst => "VAR_INST",
         }
     }
 }

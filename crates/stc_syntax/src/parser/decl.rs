@@ -605,7 +605,7 @@ impl Parser<'_> {
     }
 
     /// A variable section starts here: a VAR keyword, or the dialect
-    /// sections VAR_STAT and VAR_INST (read as VAR after their E0030).
+    /// sections VAR_STAT and VAR_INST (CODESYS).
     pub(crate) fn at_var_block_start(&self) -> bool {
         is_var_block_start(self.kind())
             || (self.at_word("VAR_STAT") || self.at_word("VAR_INST"))
@@ -718,13 +718,10 @@ impl Parser<'_> {
 
     pub(crate) fn var_block(&mut self) -> Option<VarBlock> {
         let start = self.tok();
-        let kind = if self.at_word("VAR_STAT") || self.at_word("VAR_INST") {
-            let what = format!(
-                "`{}` sections are",
-                self.text_of(start).to_ascii_uppercase()
-            );
-            self.unsupported(start.span(), &what);
-            VarKind::Var
+        let kind = if self.at_word("VAR_STAT") {
+            VarKind::Stat
+        } else if self.at_word("VAR_INST") {
+            VarKind::Inst
         } else {
             var_kind(start.kind)?
         };

@@ -310,7 +310,13 @@ impl<'a> Layout<'a> {
                 kind,
                 TokenKind::Kw(Keyword::Constant | Keyword::Retain | Keyword::NonRetain)
             ) || (kind == TokenKind::Ident
-                && self.src(i).eq_ignore_ascii_case("PERSISTENT"));
+                && ["PERSISTENT", "PUBLIC", "PRIVATE", "PROTECTED", "INTERNAL"]
+                    .iter()
+                    .any(|w| self.src(i).eq_ignore_ascii_case(w))
+                && self
+                    .toks
+                    .get(i + 1)
+                    .is_none_or(|t| !matches!(t.kind, TokenKind::Colon | TokenKind::Comma)));
             if !qualifier {
                 self.var_header = false;
                 self.at_stmt_start = true;

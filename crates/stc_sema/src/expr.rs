@@ -198,6 +198,23 @@ impl<'a> Sema<'a> {
         None
     }
 
+    /// Whether variable `v` of block `p` is declared in a `VAR PUBLIC` or
+    /// `VAR INTERNAL` section (3rd edition): visible outside its instance.
+    fn public_var(&self, p: PouId, v: crate::VarId) -> bool {
+        let Some(Some(src)) = self
+            .pou_var_src
+            .get(p.0 as usize)
+            .and_then(|s| s.get(v.0 as usize))
+        else {
+            return false;
+        };
+        src.block.kind == stc_syntax::ast::VarKind::Var
+            && matches!(
+                src.block.access,
+                Some(stc_syntax::ast::Access::Public | stc_syntax::ast::Access::Internal)
+            )
+    }
+
     /// A name in POU `p` that is not one of its own variables: `THIS`,
     /// `SUPER`, or in a METHOD a variable of its function block (the
     /// instance's, through `THIS`).
@@ -1201,9 +1218,15 @@ impl<'a> Sema<'a> {
                         return t;
                     }
                 }
+                let public = self.pous[p.0 as usize]
+                    .lookup(member.sym)
+                    .is_some_and(|v| self.public_var(p, v));
                 let pou = &self.pous[p.0 as usize];
                 match pou.lookup(member.sym) {
-                    Some(v) if matches!(pou.var(v).section, Section::Input | Section::Output) => {
+                    Some(v)
+                        if matches!(pou.var(v).section, Section::Input | Section::Output)
+                            || public =>
+                    {
                         let ty = pou.var(v).ty;
                         if pou.var(v).implicit {
                             // `inst.ENO`: the variable needs storage.
@@ -1278,7 +1301,7 @@ impl<'a> Sema<'a> {
                             }
                         } else {
                             d = d.with_note(
-                                "only the inputs and outputs of an instance are visible outside it",
+                                "only the inputs, the outputs and the `VAR PUBLIC` variables of an instance are visible outside it",
                             );
                         }
                         self.emit(d);

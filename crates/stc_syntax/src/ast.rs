@@ -497,6 +497,9 @@ pub enum Retention {
 #[derive(Clone, PartialEq, Debug)]
 pub struct VarBlock {
     pub kind: VarKind,
+    /// An access specifier after the keyword (`VAR PUBLIC`, 3rd edition):
+    /// a PUBLIC or INTERNAL VAR of a block or class is visible outside it.
+    pub access: Option<Access>,
     pub constant: bool,
     pub retention: Option<Retention>,
     pub items: VarBlockItems,

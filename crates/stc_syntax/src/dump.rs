@@ -187,6 +187,10 @@ impl Dumper<'_> {
 
     fn var_block(&mut self, b: &VarBlock) {
         let mut text = format!("VarBlock {}", b.kind.keyword());
+        if let Some(a) = b.access {
+            text.push(' ');
+            text.push_str(a.keyword());
+        }
         if b.constant {
             text.push_str(" CONSTANT");
         }

@@ -303,6 +303,10 @@ impl Printer<'_> {
 
     fn var_block(&mut self, b: &VarBlock) {
         let mut head = b.kind.keyword().to_string();
+        if let Some(a) = b.access {
+            head.push(' ');
+            head.push_str(a.keyword());
+        }
         if b.constant {
             head.push_str(" CONSTANT");
         }

@@ -575,6 +575,7 @@ pub fn lower(
     let mut blocks = Vec::new();
     if !step_decls.is_empty() {
         blocks.push(VarBlock {
+            access: None,
             kind: if kind == PouKind::FunctionBlock {
                 VarKind::Output
             } else {
@@ -587,6 +588,7 @@ pub fn lower(
         });
     }
     blocks.push(VarBlock {
+        access: None,
         kind: VarKind::Var,
         constant: false,
         retention: None,

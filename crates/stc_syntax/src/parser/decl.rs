@@ -510,6 +510,7 @@ impl Parser<'_> {
                 };
                 var_blocks.push(VarBlock {
                     kind: VarKind::Input,
+                    access: None,
                     constant: false,
                     retention: None,
                     items: VarBlockItems::Vars(vec![decl]),
@@ -728,6 +729,7 @@ impl Parser<'_> {
         self.bump();
         let mut constant = false;
         let mut retention = None;
+        let mut access = None;
         loop {
             // `VAR NON_RETAIN : INT;`: a qualifier word followed by `:` or
             // `,` is a variable (E0022 at its declaration), not a qualifier
@@ -736,7 +738,18 @@ impl Parser<'_> {
             if matches!(self.nth_kind(1), TokenKind::Colon | TokenKind::Comma) {
                 break;
             }
-            if self.eat_kw(Keyword::Constant) {
+            let word = self.text_of(self.tok()).to_ascii_uppercase();
+            let spec = match word.as_str() {
+                "PUBLIC" => Some(Access::Public),
+                "PRIVATE" => Some(Access::Private),
+                "PROTECTED" => Some(Access::Protected),
+                "INTERNAL" => Some(Access::Internal),
+                _ => None,
+            };
+            if spec.is_some() && self.at(TokenKind::Ident) {
+                self.bump();
+                access = spec;
+            } else if self.eat_kw(Keyword::Constant) {
                 constant = true;
             } else if self.eat_kw(Keyword::Retain) {
                 retention = Some(Retention::Retain);
@@ -762,6 +775,7 @@ impl Parser<'_> {
         }
         Some(VarBlock {
             kind,
+            access,
             constant,
             retention,
             items,

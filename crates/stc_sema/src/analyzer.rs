@@ -145,6 +145,9 @@ pub(crate) struct Sema<'a> {
     /// Operands of IL `S`/`R` that name function block instances (the
     /// instruction sets that instance's input).
     pub il_fb_inputs: FxHashSet<ExprId>,
+    /// The type of the current result at the end of an IL body of a
+    /// chart's transition, by the place it is stored in.
+    pub il_results: FxHashMap<ExprId, TypeId>,
 }
 
 impl<'a> Sema<'a> {
@@ -195,6 +198,7 @@ impl<'a> Sema<'a> {
             ref_taken,
             pending_refs: FxHashMap::default(),
             il_fb_inputs: FxHashSet::default(),
+            il_results: FxHashMap::default(),
         }
     }
 
@@ -249,6 +253,7 @@ impl<'a> Sema<'a> {
         Analysis {
             implicit_used,
             il_fb_inputs: self.il_fb_inputs,
+            il_results: self.il_results,
             types: self.types,
             pous: self.pous,
             globals: self.globals,

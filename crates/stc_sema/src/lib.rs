@@ -358,6 +358,10 @@ pub struct Analysis {
     /// block instances: the instruction sets the instance's input (the
     /// `fb_form` of `IlSem::SetReset`), not the operand itself.
     pub il_fb_inputs: rustc_hash::FxHashSet<ExprId>,
+    /// The type of the current result at the end of the IL body of a
+    /// chart's transition (`StmtKind::Il` with a result), by the place it
+    /// is stored in (the transition's condition variable).
+    pub il_results: rustc_hash::FxHashMap<ExprId, TypeId>,
     pub diagnostics: Vec<Diagnostic>,
 }
 

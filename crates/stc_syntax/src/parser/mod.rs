@@ -122,6 +122,7 @@ pub fn parse_file_in(
         late_methods: Vec::new(),
         in_method: false,
         in_action: false,
+        in_chart_il: false,
         reserved_names: Vec::new(),
         unit: UnitPart::Outside,
     };
@@ -247,6 +248,9 @@ pub(crate) struct Parser<'a> {
     in_method: bool,
     /// Inside the body of an ACTION: END_ACTION ends its statement list.
     in_action: bool,
+    /// Inside an IL body of a chart's transition or action: the chart's
+    /// END words and its next element end the body.
+    in_chart_il: bool,
     /// The kind of the POU whose body is being parsed.
     pou_kind: Option<PouKind>,
     /// METHODs written after the statements of a function block's body (a

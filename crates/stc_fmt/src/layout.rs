@@ -205,7 +205,7 @@ struct Layout<'a> {
     /// in it.
     il_body: Option<usize>,
     il_depth: usize,
-    /// The last token was the `(` of a parenthesised sequence (`AND(`).
+    /// The last token was the `(` of a sequence (`AND(`, `IN := (`).
     il_paren_op: bool,
     prev_i: usize,
 }
@@ -882,10 +882,15 @@ impl<'a> Layout<'a> {
         self.line_has_content = true;
         self.prev_was_line_comment = false;
         self.prev_was_trivia = false;
-        self.il_paren_op = kind == TokenKind::LParen && self.prev_tok.is_some() && {
-            let p = (self.toks[self.prev_i].lo - self.base) as usize;
-            self.il.is_op(p)
-        };
+        // The `(` of a sequence (after an operator, or a parameter's `:=`)
+        // is followed by an instruction: `AND( x`, `IN := ( LD a`.
+        self.il_paren_op = kind == TokenKind::LParen
+            && self.prev_tok.is_some_and(|p| {
+                p == TokenKind::Assign || {
+                    let at = (self.toks[self.prev_i].hi - self.base) as usize;
+                    self.il.is_op(at.saturating_sub(1))
+                }
+            });
         match kind {
             TokenKind::LParen => self.il_depth += 1,
             TokenKind::RParen => self.il_depth = self.il_depth.saturating_sub(1),

@@ -189,3 +189,11 @@ fn il_bodies_of_chart_actions_and_transitions() {
         "PROGRAM p\n    VAR\n        go, y : BOOL;\n    END_VAR\n    INITIAL_STEP s0 :\n        a(N);\n    END_STEP\n    STEP s1 :\n    END_STEP\n    TRANSITION FROM s0 TO s1 :\n        LD go\n        AND y\n    END_TRANSITION\n    ACTION a :\n        LD go\n        ST y\n    END_ACTION\nEND_PROGRAM\n",
     );
 }
+
+#[test]
+fn il_parameter_sequences_are_indented_inside_their_call() {
+    check(
+        "PROGRAM p VAR t : TON; a, b : BOOL; END_VAR\ncal t(\nIN := (ld a\nandn b\n),\nPT := T#1s)\nEND_PROGRAM",
+        "PROGRAM p\n    VAR\n        t : TON;\n        a, b : BOOL;\n    END_VAR\n    CAL t(\n        IN := ( LD a\n            ANDN b\n        ),\n        PT := T#1s)\nEND_PROGRAM\n",
+    );
+}

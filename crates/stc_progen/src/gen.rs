@@ -228,12 +228,20 @@ impl Gen {
         let mut pous = String::new();
         let nf = self.rng.range(0, self.size.functions as i128) as usize;
         for i in 0..nf {
-            let text = self.gen_function(i);
+            let text = if self.rng.chance(25) {
+                self.gen_il_function(i)
+            } else {
+                self.gen_function(i)
+            };
             pous.push_str(&text);
         }
         let nfb = self.rng.range(0, self.size.function_blocks as i128) as usize;
         for i in 0..nfb {
-            let text = self.gen_fb(i);
+            let text = if self.rng.chance(25) {
+                self.gen_il_fb(i)
+            } else {
+                self.gen_fb(i)
+            };
             pous.push_str(&text);
         }
 

@@ -16,8 +16,15 @@
 //!   name for a transition with a body, which assigns it) and, where
 //!   transitions compete for a step, whether it fires (`SFC$$f<i>`) and
 //!   whether the step was already taken this cycle (`SFC$$k$$<step>`);
-//! - per action an instance of the prelude's `SFC_ACTION_CONTROL`
-//!   (`SFC$$a$$<action>`).
+//! - per ACTION a variable of the prelude's structure `SFC_ACTION` (`Q, A :
+//!   BOOL`), named like the action beside the steps (`act.Q`, `inst.act.A`),
+//!   copied from its control after each call;
+//! - per action an instance of the prelude's `ACTION_CONTROL`, the
+//!   standard's block (`SFC$$a$$<action>`, `SFC$$v$$<variable>`).
+//!
+//! An action or transition body in IL is kept whole as one
+//! `StmtKind::Il` statement (a transition's stores its final current result
+//! in its condition variable).
 //!
 //! Names with `$` cannot be written by users. References the analyser will
 //! report (an unknown step, an undefined action, a second declaration of a

@@ -529,6 +529,75 @@ impl Gen {
         )
     }
 
+    /// A PROGRAM with an IL body (`globals` are its VAR_EXTERNALs): its
+    /// text and its variables.
+    pub(crate) fn gen_il_program(&mut self, name: &str, globals: &[Var]) -> (String, Vec<Var>) {
+        let mut vars = Vec::new();
+        let mut k = 0;
+        for _ in 0..self.rng.range(0, 2) {
+            vars.push(self.il_var("in", Sect::Input, k));
+            k += 1;
+        }
+        for _ in 0..self.rng.range(1, 3) {
+            vars.push(self.il_var("out", Sect::Output, k));
+            k += 1;
+        }
+        for _ in 0..self.rng.range(2, 4) {
+            vars.push(self.il_var("v", Sect::Local, k));
+            k += 1;
+        }
+        let mut fbs = Vec::new();
+        let blocks: Vec<usize> = (0..self.types.fbs.len())
+            .filter(|&t| self.types.fbs[t].inouts.is_empty())
+            .collect();
+        for _ in 0..self.rng.range(0, 2) {
+            if blocks.is_empty() {
+                break;
+            }
+            let t = *self.rng.pick(&blocks);
+            let inst = format!("fb{k}");
+            k += 1;
+            vars.push(Var {
+                name: inst.clone(),
+                ty: Ty::Fb(Fb::User(t)),
+                sect: Sect::Local,
+                init: None,
+                location: None,
+            });
+            fbs.push((inst, t));
+        }
+        let mut all = vars.clone();
+        all.extend(globals.iter().cloned());
+        let mut b = Il {
+            vars: self.il_vars(&all, None),
+            lines: Vec::new(),
+            funcs: self.funcs.len(),
+            fbs: fbs.clone(),
+            next_label: 0,
+            counters: Vec::new(),
+            depth: 0,
+        };
+        // Every instance is called at least once.
+        for (inst, _) in &fbs {
+            b.emit(format!("CAL {inst}"));
+        }
+        let n = self.rng.range(3, (self.size.statements / 2).max(4) as i128) as usize;
+        let body = self.il_body_text(&mut b, n);
+        let mut blocks = self.il_var_blocks(&vars);
+        if !globals.is_empty() {
+            blocks.push_str("VAR_EXTERNAL\n");
+            for g in globals {
+                blocks.push_str(&format!("    {} : {};\n", g.name, self.types.text(&g.ty)));
+            }
+            blocks.push_str("END_VAR\n");
+        }
+        let text = format!(
+            "PROGRAM {name}\n{blocks}{}{body}\nEND_PROGRAM\n\n",
+            Self::counters_block(&b)
+        );
+        (text, vars)
+    }
+
     fn il_var_blocks(&self, vars: &[Var]) -> String {
         let mut out = String::new();
         for (sect, kw) in [

@@ -476,6 +476,27 @@ Change the chart's transitions instead, or keep your own variable.";
 TO b : t := ...; END_TRANSITION`) gives its condition by assigning its own
 name, so it needs one. Name the transition, or write the condition as
 `:= expression;`.";
+    E1210 Error "transition in IL without a BOOL result"
+"A transition whose condition is written in Instruction List (`TRANSITION
+FROM a TO b : LD x GT 5 END_TRANSITION`) takes as its condition the current
+result at the end of the body, so that result must be a BOOL: end the body
+with a comparison or a BOOL load. After ST, CAL or at a label reached with
+different types the current result is undefined and cannot be the
+condition.";
+    E1211 Error "action flag written"
+"`action.Q` (the action control's output: the action is active) and
+`action.A` (its body runs: while Q, and once more after Q falls) are kept
+by the chart's action control; the program may read them, never write them.
+Change the action's associations instead, or keep your own variable.";
+    E1212 Error "indicator variable not BOOL"
+"An indicator variable named in an action association (`act(N, done)`)
+shows something the action does; the standard makes it a Boolean, which the
+action's body sets. Name a BOOL variable of the POU.";
+    E1213 Error "RET in an action or transition"
+"The IL body of an action or a transition of a chart is a part of the
+chart's cycle; RET, RETC and RETCN would leave the whole POU, skipping the
+rest of the cycle (the other actions, the step times). Jump to a label at
+the end of the body instead.";
 
     E1301 Error "dereference of something that is not a reference"
 "The dereference `^` reads or writes the variable a reference refers to, so

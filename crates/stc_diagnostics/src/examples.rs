@@ -3172,6 +3172,155 @@ END_PROGRAM
 ",
     ),
     (
+        Code::E1210,
+        r"PROGRAM Press
+VAR
+    level : INT;
+END_VAR
+INITIAL_STEP Idle :
+END_STEP
+STEP Run :
+END_STEP
+TRANSITION FROM Idle TO Run :
+    LD level
+    ADD 1      // E1210
+END_TRANSITION
+END_PROGRAM
+",
+        r"PROGRAM Press
+VAR
+    level : INT;
+END_VAR
+INITIAL_STEP Idle :
+END_STEP
+STEP Run :
+END_STEP
+TRANSITION FROM Idle TO Run :
+    LD level
+    ADD 1
+    GT 10
+END_TRANSITION
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1211,
+        r"PROGRAM Press
+VAR
+    go : BOOL;
+END_VAR
+INITIAL_STEP Idle :
+    Start(N);
+END_STEP
+STEP Run :
+END_STEP
+TRANSITION FROM Idle TO Run := go;
+END_TRANSITION
+ACTION Start :
+    Start.Q := go;   // E1211
+END_ACTION
+END_PROGRAM
+",
+        r"PROGRAM Press
+VAR
+    go : BOOL;
+    last_scan : BOOL;
+END_VAR
+INITIAL_STEP Idle :
+    Start(N);
+END_STEP
+STEP Run :
+END_STEP
+TRANSITION FROM Idle TO Run := go;
+END_TRANSITION
+ACTION Start :
+    last_scan := NOT Start.Q;
+END_ACTION
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1212,
+        r"PROGRAM Press
+VAR
+    go : BOOL;
+    count : INT;
+END_VAR
+INITIAL_STEP Idle :
+    Start(N, count);   // E1212
+END_STEP
+STEP Run :
+END_STEP
+TRANSITION FROM Idle TO Run := go;
+END_TRANSITION
+ACTION Start :
+    count := count + 1;
+END_ACTION
+END_PROGRAM
+",
+        r"PROGRAM Press
+VAR
+    go : BOOL;
+    count : INT;
+    counted : BOOL;
+END_VAR
+INITIAL_STEP Idle :
+    Start(N, counted);
+END_STEP
+STEP Run :
+END_STEP
+TRANSITION FROM Idle TO Run := go;
+END_TRANSITION
+ACTION Start :
+    count := count + 1;
+    counted := TRUE;
+END_ACTION
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1213,
+        r"PROGRAM Press
+VAR
+    go, busy : BOOL;
+END_VAR
+INITIAL_STEP Idle :
+    Start(N);
+END_STEP
+STEP Run :
+END_STEP
+TRANSITION FROM Idle TO Run := go;
+END_TRANSITION
+ACTION Start :
+    LD busy
+    RETC       // E1213
+    LD go
+    ST busy
+END_ACTION
+END_PROGRAM
+",
+        r"PROGRAM Press
+VAR
+    go, busy : BOOL;
+END_VAR
+INITIAL_STEP Idle :
+    Start(N);
+END_STEP
+STEP Run :
+END_STEP
+TRANSITION FROM Idle TO Run := go;
+END_TRANSITION
+ACTION Start :
+    LD busy
+    JMPC done
+    LD go
+    ST busy
+done:
+END_ACTION
+END_PROGRAM
+",
+    ),
+    (
         Code::W1201,
         r"PROGRAM Press
 VAR

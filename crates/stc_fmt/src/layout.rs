@@ -12,11 +12,119 @@
 //! line is indented, and where a user's own line break is a continuation of
 //! the same statement (indented one level more). Line breaks the user wrote
 //! inside a statement are kept; blank lines are kept, at most one in a row.
+//!
+//! Instruction List is line-oriented, so tokens alone cannot tell where an
+//! IL body is: the parser finds the bodies ([`IlRegions`]) and, inside
+//! them, the layout keeps each line break the user wrote (one instruction
+//! per line, a label alone or before its instruction), indents every line
+//! at the body's level plus the nesting of parenthesised sequences and
+//! parameter lists, spaces tokens canonically, and writes the operators in
+//! the case of reserved words.
 
+use stc_syntax::ast::{
+    Ast, IlArg, IlArgKind, IlArgValue, IlBody, IlCallArgs, IlInstr, IlOp, Item, SfcElement,
+    TransitionCond,
+};
 use stc_syntax::lexer::{Trivia, TriviaKind};
 use stc_syntax::token::{ElemType, Keyword, Token, TokenKind};
 
 use crate::{KeywordCase, Options};
+
+/// Where the Instruction List bodies of a file are (byte ranges from the
+/// file's start, in order), and the operators in them.
+#[derive(Default, Debug)]
+pub(crate) struct IlRegions {
+    bodies: Vec<(usize, usize)>,
+    /// The byte ranges of the operator words (`LD`, `JMPC`, `&N`...).
+    ops: Vec<(usize, usize)>,
+}
+
+impl IlRegions {
+    /// The IL bodies of POUs and of charts' actions and transitions.
+    pub(crate) fn of(ast: &Ast, base: u32) -> IlRegions {
+        let mut r = IlRegions::default();
+        for item in &ast.items {
+            let Item::Pou(pou) = item else { continue };
+            if let Some(il) = &pou.il {
+                r.body(il, base);
+            }
+            for e in pou.sfc.iter().flat_map(|s| &s.elements) {
+                match e {
+                    SfcElement::Action(a) => {
+                        if let Some(il) = &a.il {
+                            r.body(il, base);
+                        }
+                    }
+                    SfcElement::Transition(t) => {
+                        if let TransitionCond::Il(il) = &t.cond {
+                            r.body(il, base);
+                        }
+                    }
+                    SfcElement::Step(_) => {}
+                }
+            }
+        }
+        r.bodies.sort_unstable();
+        r.ops.sort_unstable();
+        r
+    }
+
+    fn body(&mut self, il: &IlBody, base: u32) {
+        if il.instrs.is_empty() {
+            return;
+        }
+        let at = |p: u32| p.saturating_sub(base) as usize;
+        self.bodies.push((at(il.span.lo), at(il.span.hi)));
+        self.instrs(&il.instrs, base);
+    }
+
+    fn instrs(&mut self, list: &[IlInstr], base: u32) {
+        let at = |p: u32| p.saturating_sub(base) as usize;
+        for ins in list {
+            match &ins.op {
+                IlOp::None => {}
+                IlOp::Simple { op_span, .. }
+                | IlOp::Jump { op_span, .. }
+                | IlOp::Ret { op_span, .. } => self.ops.push((at(op_span.lo), at(op_span.hi))),
+                IlOp::Paren { op_span, body, .. } => {
+                    self.ops.push((at(op_span.lo), at(op_span.hi)));
+                    self.instrs(body, base);
+                }
+                IlOp::Call { .. } => {}
+                IlOp::FormalCall { args, .. } => self.args(args, base),
+                IlOp::Cal { op_span, args, .. } => {
+                    self.ops.push((at(op_span.lo), at(op_span.hi)));
+                    if let Some(IlCallArgs::Formal(args)) = args {
+                        self.args(args, base);
+                    }
+                }
+            }
+        }
+    }
+
+    fn args(&mut self, args: &[IlArg], base: u32) {
+        for a in args {
+            if let IlArgKind::Input {
+                value: IlArgValue::List { body, .. },
+                ..
+            } = &a.kind
+            {
+                self.instrs(body, base);
+            }
+        }
+    }
+
+    /// The IL body the byte at `lo` is in.
+    fn body_at(&self, lo: usize) -> Option<usize> {
+        let k = self.bodies.partition_point(|&(b, _)| b <= lo);
+        k.checked_sub(1).filter(|&k| lo < self.bodies[k].1)
+    }
+
+    fn is_op(&self, lo: usize) -> bool {
+        let k = self.ops.partition_point(|&(b, _)| b <= lo);
+        k.checked_sub(1).is_some_and(|k| lo < self.ops[k].1)
+    }
+}
 
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 enum Block {
@@ -95,6 +203,14 @@ struct Layout<'a> {
     prev_was_trivia: bool,
     /// Indentation of the current output line.
     line_indent: usize,
+    il: &'a IlRegions,
+    /// The IL body the last token was in, and the nesting of parentheses
+    /// in it.
+    il_body: Option<usize>,
+    il_depth: usize,
+    /// The last token was the `(` of a sequence (`AND(`, `IN := (`).
+    il_paren_op: bool,
+    prev_i: usize,
 }
 
 /// Lays out `text` (whose first byte is at `base`) from its tokens and
@@ -104,6 +220,7 @@ pub(crate) fn layout(
     base: u32,
     toks: &[Token],
     trivia: &[Trivia],
+    il: &IlRegions,
     opts: &Options,
 ) -> String {
     let mut elems = Vec::with_capacity(toks.len() + trivia.len());
@@ -139,6 +256,11 @@ pub(crate) fn layout(
         prev_was_line_comment: false,
         prev_was_trivia: false,
         line_indent: 0,
+        il,
+        il_body: None,
+        il_depth: 0,
+        il_paren_op: false,
+        prev_i: 0,
     };
     let start = if text.starts_with('\u{FEFF}') { 3 } else { 0 };
     let mut prev_end = start;
@@ -252,6 +374,18 @@ impl<'a> Layout<'a> {
         let lo = (t.span.lo - self.base) as usize;
         let hi = (t.span.hi - self.base) as usize;
         let text = self.text[lo..hi].trim_end_matches(['\r', '\n']);
+        if self.il.body_at(lo).is_some() && self.il_body.is_some() {
+            if newlines > 0 || self.prev_was_line_comment {
+                self.newline(self.body_level() + self.il_depth, newlines > 1);
+            } else if self.line_has_content {
+                self.out.push(' ');
+            }
+            self.out.push_str(text);
+            self.line_has_content = true;
+            self.prev_was_line_comment = t.kind == TriviaKind::Comment && text.starts_with("//");
+            self.prev_was_trivia = true;
+            return;
+        }
         if newlines > 0 {
             self.end_head_line();
         }
@@ -298,6 +432,12 @@ impl<'a> Layout<'a> {
     }
 
     fn token(&mut self, i: usize, newlines: usize) {
+        let lo = (self.toks[i].lo - self.base) as usize;
+        if let Some(b) = self.il.body_at(lo) {
+            self.il_token(i, newlines, b);
+            return;
+        }
+        self.il_body = None;
         let kind = self.kind(i);
         let top = self.stack.last().copied();
         // Where this token's line must start, if it must start one.
@@ -496,6 +636,7 @@ impl<'a> Layout<'a> {
         self.pending = Pending::None;
         self.prev_was_line_comment = false;
         self.prev_was_trivia = false;
+        self.prev_i = i;
 
         // What the token opens or ends.
         self.prev_unary = matches!(kind, TokenKind::Minus | TokenKind::Plus)
@@ -793,9 +934,97 @@ impl<'a> Layout<'a> {
         }
     }
 
+    /// A token of an IL body: a line break where the user wrote one (IL is
+    /// line-oriented), the body's indentation plus the open parentheses.
+    fn il_token(&mut self, i: usize, newlines: usize, body: usize) {
+        let kind = self.kind(i);
+        let first = self.il_body != Some(body);
+        if first {
+            self.il_body = Some(body);
+            self.il_depth = 0;
+            self.end_head_line();
+        }
+        if first || newlines > 0 || self.prev_was_line_comment {
+            let depth = if kind == TokenKind::RParen {
+                self.il_depth.saturating_sub(1)
+            } else {
+                self.il_depth
+            };
+            self.newline(self.body_level() + depth, newlines > 1);
+        } else if self.line_has_content && self.il_space_before(i, kind) {
+            self.out.push(' ');
+        }
+        let lo = (self.toks[i].lo - self.base) as usize;
+        let op = self.il.is_op(lo);
+        // The operators are words of the language: written like reserved
+        // words.
+        self.write_word(i, op || kind.is_reserved_word());
+        self.line_has_content = true;
+        self.prev_was_line_comment = false;
+        self.prev_was_trivia = false;
+        // The `(` of a sequence (after an operator, or a parameter's `:=`)
+        // is followed by an instruction: `AND( x`, `IN := ( LD a`.
+        self.il_paren_op = kind == TokenKind::LParen
+            && self.prev_tok.is_some_and(|p| {
+                p == TokenKind::Assign || {
+                    let at = (self.toks[self.prev_i].hi - self.base) as usize;
+                    self.il.is_op(at.saturating_sub(1))
+                }
+            });
+        match kind {
+            TokenKind::LParen => self.il_depth += 1,
+            TokenKind::RParen => self.il_depth = self.il_depth.saturating_sub(1),
+            _ => {}
+        }
+        // What follows the body starts a line of its own.
+        self.pending = Pending::Break;
+        self.at_stmt_start = true;
+        self.prev_unary = false;
+        self.prev_tok = Some(kind);
+        self.prev_i = i;
+    }
+
+    /// Whether a space separates two tokens of one IL line.
+    fn il_space_before(&self, i: usize, kind: TokenKind) -> bool {
+        let Some(prev) = self.prev_tok else {
+            return false;
+        };
+        if self.prev_was_trivia {
+            return true;
+        }
+        // `&N` and a signed literal (`-5`) keep the source's joining.
+        if matches!(prev, TokenKind::Amp | TokenKind::Minus | TokenKind::Plus) {
+            return self.toks[self.prev_i].hi != self.toks[i].lo;
+        }
+        match kind {
+            TokenKind::RParen
+            | TokenKind::Comma
+            | TokenKind::Dot
+            | TokenKind::Hash
+            | TokenKind::Caret
+            | TokenKind::PartialAccess
+            | TokenKind::RBracket
+            | TokenKind::Colon => return false,
+            TokenKind::LParen => {
+                return !matches!(prev, TokenKind::Ident | TokenKind::Kw(_) | TokenKind::Amp)
+            }
+            TokenKind::LBracket => return !matches!(prev, TokenKind::Ident | TokenKind::RBracket),
+            _ => {}
+        }
+        match prev {
+            TokenKind::LParen => self.il_paren_op,
+            TokenKind::LBracket | TokenKind::Dot | TokenKind::Hash => false,
+            _ => true,
+        }
+    }
+
     fn write_token(&mut self, i: usize, kind: TokenKind) {
+        self.write_word(i, kind.is_reserved_word());
+    }
+
+    /// Writes the token's text, in the case of reserved words if `reserved`.
+    fn write_word(&mut self, i: usize, reserved: bool) {
         let src = self.src(i);
-        let reserved = kind.is_reserved_word();
         match self.opts.keyword_case {
             KeywordCase::Upper if reserved => self.out.push_str(&src.to_ascii_uppercase()),
             KeywordCase::Lower if reserved => self.out.push_str(&src.to_ascii_lowercase()),

@@ -1,4 +1,5 @@
-//! `stc fmt`: the canonical layout of Structured Text, checked safe.
+//! `stc fmt`: the canonical layout of Structured Text and Instruction
+//! List, checked safe.
 //!
 //! [`format`] lays a file out again (indentation, one statement per line,
 //! spacing around operators, reserved words in one case) from its tokens and
@@ -78,6 +79,7 @@ impl std::fmt::Display for FormatError {
 /// A file's tree (as its position-free dump) and its comments and pragmas.
 struct Parsed {
     tree: String,
+    il: layout::IlRegions,
     trivia_text: Vec<String>,
     trivia: Vec<Trivia>,
     tokens: Vec<stc_syntax::token::Token>,
@@ -103,6 +105,7 @@ fn parse(text: &str, base: u32, iec2: bool) -> Parsed {
             .to_string()
     };
     Parsed {
+        il: layout::IlRegions::of(&ast, base),
         tree: dump::dump(&ast, &interner, None),
         trivia_text: r.trivia.iter().map(|t| slice(t.span)).collect(),
         trivia: r.trivia,
@@ -118,7 +121,7 @@ pub fn format(text: &str, base: u32, opts: &Options) -> Result<String, FormatErr
     if !before.errors.is_empty() {
         return Err(FormatError::Syntax(before.errors));
     }
-    let out = layout::layout(text, base, &before.tokens, &before.trivia, opts);
+    let out = layout::layout(text, base, &before.tokens, &before.trivia, &before.il, opts);
     let after = parse(&out, 0, opts.iec2);
     if !after.errors.is_empty() {
         return Err(FormatError::Unsafe(format!(
@@ -136,7 +139,7 @@ pub fn format(text: &str, base: u32, opts: &Options) -> Result<String, FormatErr
             "a comment or pragma would be lost or changed".into(),
         ));
     }
-    let again = layout::layout(&out, 0, &after.tokens, &after.trivia, opts);
+    let again = layout::layout(&out, 0, &after.tokens, &after.trivia, &after.il, opts);
     if again != out {
         return Err(FormatError::Unsafe(
             "formatting the result again would change it (not idempotent)".into(),

@@ -181,3 +181,27 @@ fn properties_and_their_accessors_are_blocks() {
         "FUNCTION_BLOCK f\n    VAR\n        x : INT;\n        p : POINTER TO INT;\n    END_VAR\n    PROPERTY PUBLIC v : INT\n        GET\n            VAR\n                k : INT;\n            END_VAR\n            v := x + k;\n        END_GET\n        SET\n            x := v;\n            p^ := v;\n        END_SET\n    END_PROPERTY\n    x := x + 1;\nEND_FUNCTION_BLOCK\n",
     );
 }
+
+#[test]
+fn il_bodies_one_instruction_per_line_operators_upper_case() {
+    check(
+        "FUNCTION_BLOCK f VAR a, b : BOOL; i : INT; t : TON; END_VAR\n  ld a\n andn   b\nst a // kept\n\nstart:   ld i\nadd(   i\n  mul 2\n    )\nst i\n(* own line *)\n jmpc start\nend:\ncal t(IN := a,\n      PT := T#1s)\n&N b\nld -5\nEND_FUNCTION_BLOCK",
+        "FUNCTION_BLOCK f\n    VAR\n        a, b : BOOL;\n        i : INT;\n        t : TON;\n    END_VAR\n    LD a\n    ANDN b\n    ST a // kept\n\n    start: LD i\n    ADD( i\n        MUL 2\n    )\n    ST i\n    (* own line *)\n    JMPC start\n    end:\n    CAL t(IN := a,\n        PT := T#1s)\n    &N b\n    LD -5\nEND_FUNCTION_BLOCK\n",
+    );
+}
+
+#[test]
+fn il_bodies_of_chart_actions_and_transitions() {
+    check(
+        "PROGRAM p VAR go, y : BOOL; END_VAR\nINITIAL_STEP s0: a(N); END_STEP\nSTEP s1: END_STEP\nTRANSITION FROM s0 TO s1:\nld go\n  and y\nEND_TRANSITION\nACTION a:\n ld go\n   st y\nEND_ACTION\nEND_PROGRAM",
+        "PROGRAM p\n    VAR\n        go, y : BOOL;\n    END_VAR\n    INITIAL_STEP s0 :\n        a(N);\n    END_STEP\n    STEP s1 :\n    END_STEP\n    TRANSITION FROM s0 TO s1 :\n        LD go\n        AND y\n    END_TRANSITION\n    ACTION a :\n        LD go\n        ST y\n    END_ACTION\nEND_PROGRAM\n",
+    );
+}
+
+#[test]
+fn il_parameter_sequences_are_indented_inside_their_call() {
+    check(
+        "PROGRAM p VAR t : TON; a, b : BOOL; END_VAR\ncal t(\nIN := (ld a\nandn b\n),\nPT := T#1s)\nEND_PROGRAM",
+        "PROGRAM p\n    VAR\n        t : TON;\n        a, b : BOOL;\n    END_VAR\n    CAL t(\n        IN := ( LD a\n            ANDN b\n        ),\n        PT := T#1s)\nEND_PROGRAM\n",
+    );
+}

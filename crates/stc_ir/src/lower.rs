@@ -382,6 +382,19 @@ impl<'a> Lowerer<'a> {
         let at = |l: &Self, k| l.stmt_at(s.span, k);
         match &s.kind {
             SK::Empty | SK::Error | SK::Unsupported(_) => {}
+            SK::Il { body, result } => {
+                out.extend(self.il_body(body));
+                if let Some(r) = result {
+                    if let Some(&ty) = self.a.il_results.get(r) {
+                        let place = self.place(*r);
+                        let value = Expr {
+                            kind: ExprKind::Load(self.cr_place(ty)),
+                            ty,
+                        };
+                        out.push(at(self, StmtKind::Assign { place, value }));
+                    }
+                }
+            }
             SK::AssignAttempt { target, value } => {
                 let mut stmts = self.assignment_attempt(*target, *value, s.span);
                 out.append(&mut self.pending);

@@ -88,6 +88,12 @@ pub fn own_exprs(s: &Stmt, f: &mut dyn FnMut(ExprId), labels: &mut dyn FnMut(Exp
                 f(*e);
             }
         }
+        // (An IL body inside a chart: its result; the lints read ST.)
+        StmtKind::Il { result, .. } => {
+            if let Some(r) = result {
+                f(*r);
+            }
+        }
         StmtKind::Empty
         | StmtKind::Error
         | StmtKind::Exit

@@ -228,12 +228,20 @@ impl Gen {
         let mut pous = String::new();
         let nf = self.rng.range(0, self.size.functions as i128) as usize;
         for i in 0..nf {
-            let text = self.gen_function(i);
+            let text = if self.rng.chance(25) {
+                self.gen_il_function(i)
+            } else {
+                self.gen_function(i)
+            };
             pous.push_str(&text);
         }
         let nfb = self.rng.range(0, self.size.function_blocks as i128) as usize;
         for i in 0..nfb {
-            let text = self.gen_fb(i);
+            let text = if self.rng.chance(25) {
+                self.gen_il_fb(i)
+            } else {
+                self.gen_fb(i)
+            };
             pous.push_str(&text);
         }
 
@@ -269,7 +277,12 @@ impl Gen {
             });
             self.event_global = Some("g_event".into());
         }
-        let main = self.gen_program("Main", self.size.statements, &globals);
+        let main = if event || !self.rng.chance(12) {
+            self.gen_program("Main", self.size.statements, &globals)
+        } else {
+            let (text, vars) = self.gen_il_program("Main", &globals);
+            Prog { text, vars }
+        };
         self.event_global = None;
         pous.push_str(&main.text);
         let mut instances: Vec<(String, Vec<Var>)> = Vec::new();
@@ -278,7 +291,12 @@ impl Gen {
         if config {
             let with_aux = self.rng.chance(50);
             let aux = if with_aux {
-                let a = self.gen_program("Aux", self.size.statements / 2 + 1, &globals);
+                let a = if self.rng.chance(30) {
+                    let (text, vars) = self.gen_il_program("Aux", &globals);
+                    Prog { text, vars }
+                } else {
+                    self.gen_program("Aux", self.size.statements / 2 + 1, &globals)
+                };
                 pous.push_str(&a.text);
                 Some(a)
             } else {

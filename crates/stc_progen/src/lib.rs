@@ -1,4 +1,5 @@
-//! Random well-typed IEC 61131-3 Structured Text programs, and the
+//! Random well-typed IEC 61131-3 programs (Structured Text, with some
+//! FUNCTIONs and FUNCTION_BLOCKs in Instruction List, `il.rs`), and the
 //! differential test that runs each on the bytecode VM (`stc run`) and on
 //! the C back end (`stc run --backend c`: the generated C compiled into a
 //! shared library and loaded), both in-process, which must print
@@ -13,6 +14,7 @@
 pub mod diff;
 mod expr;
 mod gen;
+mod il;
 mod model;
 mod rng;
 

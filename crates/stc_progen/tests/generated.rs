@@ -91,6 +91,15 @@ fn generation_is_deterministic_and_varied() {
         assert!(!g.watch.is_empty(), "seed {seed} watches nothing");
         assert!(g.cycles >= 3, "seed {seed} runs {} cycles", g.cycles);
     }
+    // Some programs have POUs in Instruction List (the informal call and
+    // CAL forms too), so the differential runs cover IL.
+    let il: Vec<String> = (0..100)
+        .map(|seed| program(seed, Size::default()).source)
+        .filter(|s| s.lines().any(|l| l.trim_start().starts_with("LD ")))
+        .collect();
+    assert!(il.len() > 20, "only {} of 100 programs have IL", il.len());
+    assert!(il.iter().any(|s| s.contains("\n    CAL")));
+    assert!(il.iter().any(|s| s.contains("\n    JMPC")));
 }
 
 #[test]

@@ -159,6 +159,9 @@ pub(crate) struct Sema<'a> {
     pub inst_vars: FxHashMap<(PouId, Symbol, Symbol), VarId>,
     /// `p^` of a pointer to an array not indexed with every dimension.
     pub whole_ptr_arrays: Vec<stc_diagnostics::Span>,
+    /// The type of the current result at the end of an IL body of a
+    /// chart's transition, by the place it is stored in.
+    pub il_results: FxHashMap<ExprId, TypeId>,
 }
 
 impl<'a> Sema<'a> {
@@ -215,6 +218,7 @@ impl<'a> Sema<'a> {
             whole_ptr_arrays: Vec::new(),
             statics: FxHashMap::default(),
             inst_vars: FxHashMap::default(),
+            il_results: FxHashMap::default(),
         }
     }
 
@@ -273,6 +277,7 @@ impl<'a> Sema<'a> {
             ptr_kinds: self.ptr_kinds,
             null_ptrs: self.null_ptrs,
             ptrs,
+            il_results: self.il_results,
             types: self.types,
             pous: self.pous,
             globals: self.globals,

@@ -51,7 +51,10 @@ enum Why {
 }
 
 impl<'a> Sema<'a> {
-    pub(crate) fn il_body(&mut self, p: PouId, il: &'a IlBody) {
+    /// Checks the body; returns the type of the current result at its end
+    /// (`None` if undefined there, `ERROR` if the end is not reached or
+    /// after an error).
+    pub(crate) fn il_body(&mut self, p: PouId, il: &'a IlBody) -> Option<TypeId> {
         let instrs = &il.instrs;
         // Labels: where each is, whether the code at it reads the current
         // result, and which are jumped to.
@@ -253,6 +256,62 @@ impl<'a> Sema<'a> {
             }
         }
         self.body.il_cr = None;
+        match cr {
+            _ if !reachable => Some(TypeId::ERROR),
+            Cr::Ty(t) => Some(t),
+            Cr::Undefined(_) => None,
+        }
+    }
+
+    /// An IL body inside a chart (an action's, or a transition's whose
+    /// condition is the current result at the end, stored in `result`).
+    pub(crate) fn il_in_chart(&mut self, p: PouId, il: &'a IlBody, result: Option<ExprId>) {
+        for ins in &il.instrs {
+            if let IlOp::Ret { op_span, .. } = &ins.op {
+                self.emit(
+                    Diagnostic::new(
+                        Code::E1213,
+                        *op_span,
+                        "RET cannot stand in an action or a transition of a chart",
+                    )
+                    .with_label("would leave the whole POU, not only this body")
+                    .with_help("jump to a label at the end of the body instead"),
+                );
+            }
+        }
+        let end = self.il_body(p, il);
+        let Some(result) = result else { return };
+        let at = il
+            .instrs
+            .iter()
+            .rev()
+            .find(|x| x.op != IlOp::None)
+            .map_or(il.span, |x| x.span);
+        let bool_ty = self.types.elem(stc_syntax::token::ElemType::Bool);
+        let ty = match end {
+            Some(t) if t == TypeId::ERROR || self.types.is_bool(t) => t,
+            other => {
+                let shown = match other {
+                    Some(t) => self.tname(t),
+                    None => "undefined".to_string(),
+                };
+                self.emit(
+                    Diagnostic::new(
+                        Code::E1210,
+                        at,
+                        format!(
+                            "the condition of a transition in IL is the current result at its end, which must be BOOL, but it is {shown}"
+                        ),
+                    )
+                    .with_label(format!("the current result here is {shown}"))
+                    .with_help("end the body with a BOOL value: a comparison (`GT 0`) or a BOOL load"),
+                );
+                TypeId::ERROR
+            }
+        };
+        self.check_lvalue(result, Scope::Pou(p), crate::calls::Write::Assign);
+        self.il_results
+            .insert(result, if ty == TypeId::ERROR { bool_ty } else { ty });
     }
 
     /// The type the next instruction wants the current result to have,

@@ -408,6 +408,10 @@ pub struct Analysis {
     /// What the lowering of pointers needs; `None` in a program without
     /// pointer types.
     pub ptrs: Option<PtrInfo>,
+    /// The type of the current result at the end of the IL body of a
+    /// chart's transition (`StmtKind::Il` with a result), by the place it
+    /// is stored in (the transition's condition variable).
+    pub il_results: rustc_hash::FxHashMap<ExprId, TypeId>,
     pub diagnostics: Vec<Diagnostic>,
 }
 

@@ -77,25 +77,32 @@ VAR M : BOOL; END_VAR
     M := NOT CLK;
 END_FUNCTION_BLOCK
 
-(* The action control of a Sequential Function Chart (docs/sfc.md): one
-   instance per action, one input per qualifier (the OR of the flags of the
-   steps that associate the action with it) and one duration per timed
-   qualifier. Q is the action's activity; A runs the action: while Q, once
-   more in the cycle after Q falls (the final scan), and once at the rising
-   edge of P1 and the falling edge of P0. R resets what S, SD, DS and SL
-   stored. *)
+(* ACTION_CONTROL, the standard's action control (3rd edition: the inputs
+   N, R, S0, L, D, P, P1, P0, SD, DS, SL and the duration T; the outputs Q
+   and A; docs/sfc.md). A chart has one instance per action, each input the
+   OR of the flags of the steps that associate the action with that
+   qualifier; programs may use it directly. Q is the action's activity
+   (the action-control output); A is TRUE while Q, once more in the call
+   after Q falls (the final scan), and once at the rising edge of P1 and the
+   falling edge of P0. R resets what S0, SD, DS and SL stored and wins over
+   them. *)
 TYPE
     (* The flags of a step of a chart: active, and for how long. *)
     SFC_STEP : STRUCT
         X : BOOL;
         T : TIME;
     END_STRUCT;
+    (* The flags of an action of a chart: its ACTION_CONTROL's Q and A. *)
+    SFC_ACTION : STRUCT
+        Q : BOOL;
+        A : BOOL;
+    END_STRUCT;
 END_TYPE
 
-FUNCTION_BLOCK SFC_ACTION_CONTROL
+FUNCTION_BLOCK ACTION_CONTROL
 VAR_INPUT
-    N, R, S, L, D, P, P0, P1, SD, DS, SL : BOOL;
-    L_T, D_T, SD_T, DS_T, SL_T : TIME;
+    N, R, S0, L, D, P, P1, P0, SD, DS, SL : BOOL;
+    T : TIME;
 END_VAR
 VAR_OUTPUT Q : BOOL; A : BOOL; END_VAR
 VAR
@@ -103,15 +110,15 @@ VAR
     l_tmr, d_tmr, sd_tmr, ds_tmr, sl_tmr : TON;
     p_prev, p0_prev, p1_prev, q_prev : BOOL;
 END_VAR
-    s_set := NOT R AND (S OR s_set);
+    s_set := NOT R AND (S0 OR s_set);
     sd_set := NOT R AND (SD OR sd_set);
-    sd_tmr(IN := sd_set, PT := SD_T);
-    ds_tmr(IN := DS, PT := DS_T);
+    sd_tmr(IN := sd_set, PT := T);
+    ds_tmr(IN := DS, PT := T);
     ds_set := NOT R AND (ds_tmr.Q OR ds_set);
     sl_set := NOT R AND (SL OR sl_set);
-    sl_tmr(IN := sl_set, PT := SL_T);
-    l_tmr(IN := L, PT := L_T);
-    d_tmr(IN := D, PT := D_T);
+    sl_tmr(IN := sl_set, PT := T);
+    l_tmr(IN := L, PT := T);
+    d_tmr(IN := D, PT := T);
     Q := N OR (L AND NOT l_tmr.Q) OR d_tmr.Q OR (P AND NOT p_prev) OR s_set
         OR sd_tmr.Q OR ds_set OR (sl_set AND NOT sl_tmr.Q);
     A := Q OR q_prev OR (P1 AND NOT p1_prev) OR (p0_prev AND NOT P0);

@@ -8,7 +8,8 @@
 
 use stc_diagnostics::{Code, Diagnostic};
 use stc_syntax::ast::{
-    ExprKind, LitValue, Literal, Pou, PouKind, SfcBody, SfcElement, Stmt, StmtKind, TransitionCond,
+    ExprKind, IlInstr, IlSem, LitValue, Literal, Pou, PouKind, SfcBody, SfcElement, Stmt, StmtKind,
+    TransitionCond,
 };
 use stc_syntax::sfc::{declared, ChartNames};
 use stc_syntax::Symbol;
@@ -45,7 +46,8 @@ impl<'a> Sema<'a> {
             let named_var = match e {
                 SfcElement::Step(_) => true,
                 SfcElement::Transition(t) => matches!(t.cond, TransitionCond::Body(_)),
-                SfcElement::Action(_) => false,
+                // An action's flags are a variable named like it.
+                SfcElement::Action(_) => true,
             };
             if named_var && vars.contains(&name.sym) {
                 self.body.partial = true;
@@ -167,6 +169,23 @@ impl<'a> Sema<'a> {
                     match self.pous[p.0 as usize].lookup(i.sym) {
                         Some(v) => {
                             self.used.insert((p, v));
+                            self.resolve_pou(p);
+                            let ty = self.pous[p.0 as usize].vars[v.0 as usize].ty;
+                            if ty != TypeId::ERROR && !self.types.is_bool(ty) {
+                                let shown = self.spelled(i.sym, i.span);
+                                let tn = self.tname(ty);
+                                self.emit(
+                                    Diagnostic::new(
+                                        Code::E1212,
+                                        i.span,
+                                        format!(
+                                            "the indicator variable `{shown}` must be a BOOL, but it is {tn}"
+                                        ),
+                                    )
+                                    .with_label("not a BOOL")
+                                    .with_help("name a BOOL variable that the action's body sets"),
+                                );
+                            }
                         }
                         None => {
                             let shown = self.spelled(i.sym, i.span);
@@ -212,21 +231,25 @@ impl<'a> Sema<'a> {
             }
         }
 
-        // Step flags are read-only.
-        let steps: Vec<Symbol> = chart
+        // Step and action flags are read-only.
+        let flags: Vec<(Symbol, bool)> = chart
             .steps
             .iter()
-            .map(|s| s.name.sym)
-            .filter(|s| !vars.contains(s))
+            .map(|s| (s.name.sym, true))
+            .chain(chart.actions.iter().map(|a| (a.name.sym, false)))
+            .filter(|(s, _)| !vars.contains(s))
             .collect();
         for e in &sfc.elements {
             match e {
-                SfcElement::Action(a) => self.step_writes(&a.body, &steps),
-                SfcElement::Transition(t) => {
-                    if let TransitionCond::Body(b) = &t.cond {
-                        self.step_writes(b, &steps);
-                    }
-                }
+                SfcElement::Action(a) => match &a.il {
+                    Some(il) => self.il_flag_writes(&il.instrs, &flags),
+                    None => self.step_writes(&a.body, &flags),
+                },
+                SfcElement::Transition(t) => match &t.cond {
+                    TransitionCond::Body(b) => self.step_writes(b, &flags),
+                    TransitionCond::Il(il) => self.il_flag_writes(&il.instrs, &flags),
+                    TransitionCond::Expr(_) => {}
+                },
                 SfcElement::Step(_) => {}
             }
         }
@@ -335,8 +358,25 @@ impl<'a> Sema<'a> {
         }
     }
 
-    /// E1208 for every assignment to `step.X` or `step.T` in `list`.
-    fn step_writes(&mut self, list: &[Stmt], steps: &[Symbol]) {
+    /// E1208/E1211 for the stores of an IL body into flags.
+    fn il_flag_writes(&mut self, instrs: &[IlInstr], flags: &[(Symbol, bool)]) {
+        for ins in instrs {
+            match &ins.sem {
+                IlSem::Effect { stmts, .. } => self.step_writes(stmts, flags),
+                IlSem::SetReset {
+                    bool_form, fb_form, ..
+                } => {
+                    self.step_writes(bool_form, flags);
+                    self.step_writes(fb_form, flags);
+                }
+                IlSem::Nothing | IlSem::Load(_) | IlSem::Jump { .. } => {}
+            }
+        }
+    }
+
+    /// E1208 for every assignment to `step.X` or `step.T` in `list`, E1211
+    /// to `action.Q` or `action.A` (`flags`: the names, `true` for a step).
+    fn step_writes(&mut self, list: &[Stmt], steps: &[(Symbol, bool)]) {
         for s in list {
             match &s.kind {
                 StmtKind::Assign { target, .. } => {
@@ -350,7 +390,20 @@ impl<'a> Sema<'a> {
                         }
                     }
                     if let ExprKind::Name(n) = &self.ast.expr(e).kind {
-                        if steps.contains(&n.sym) {
+                        let found = steps.iter().find(|(s, _)| *s == n.sym).map(|f| f.1);
+                        if found == Some(false) {
+                            let shown = self.spelled(n.sym, n.span);
+                            self.emit(
+                                Diagnostic::new(
+                                    Code::E1211,
+                                    self.ast.expr(*target).span,
+                                    format!("the flags of the action `{shown}` cannot be written"),
+                                )
+                                .with_label("action flags are read-only")
+                                .with_note("the action's ACTION_CONTROL sets `.Q` and `.A`"),
+                            );
+                        }
+                        if found == Some(true) {
                             let shown = self.spelled(n.sym, n.span);
                             self.emit(
                                 Diagnostic::new(

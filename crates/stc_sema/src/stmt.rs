@@ -63,6 +63,7 @@ impl<'a> Sema<'a> {
         let scope = Scope::Pou(p);
         match &s.kind {
             StmtKind::Empty | StmtKind::Error => {}
+            StmtKind::Il { body, result } => self.il_in_chart(p, body, *result),
             StmtKind::Unsupported(exprs) => {
                 // Reported by the parser; its names still resolve.
                 for &e in exprs {

@@ -306,6 +306,14 @@ pub enum StmtKind {
     Exit,
     Continue,
     Return,
+    /// An Instruction List body inside a statement list: the meaning of an
+    /// IL action or transition of a chart (`stc_syntax::sfc`). With
+    /// `result`, the current result at the end of the body is assigned to
+    /// that place (a transition's condition, which must be BOOL).
+    Il {
+        body: Box<IlBody>,
+        result: Option<ExprId>,
+    },
     /// A statement of a dialect form that stc does not support (`r REF= v`,
     /// `x ?= y`), already reported (E0030). Its expressions are kept so the
     /// names in them are still resolved (and count as used).
@@ -895,6 +903,15 @@ impl Qualifier {
             .find(|q| q.name().eq_ignore_ascii_case(word))
     }
 
+    /// The input of ACTION_CONTROL the qualifier drives (`S0` for S, as
+    /// the standard names it).
+    pub fn input(self) -> &'static str {
+        match self {
+            Qualifier::S => "S0",
+            q => q.name(),
+        }
+    }
+
     /// Whether the qualifier takes a duration.
     pub fn timed(self) -> bool {
         matches!(
@@ -925,6 +942,8 @@ pub enum TransitionCond {
     Expr(ExprId),
     /// `: statements` that assign the condition to the transition's name.
     Body(Vec<Stmt>),
+    /// `: IL instructions`: the current result at the end is the condition.
+    Il(IlBody),
 }
 
 /// `ACTION name : statements END_ACTION`.
@@ -932,6 +951,8 @@ pub enum TransitionCond {
 pub struct SfcAction {
     pub name: Ident,
     pub body: Vec<Stmt>,
+    /// The body in Instruction List (then `body` is empty).
+    pub il: Option<IlBody>,
     pub span: Span,
 }
 

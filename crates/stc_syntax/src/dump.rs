@@ -171,16 +171,20 @@ impl Dumper<'_> {
                 d.nested(|d| d.stmts(&p.body));
             }
             if let Some(il) = &p.il {
-                d.line(il.span, "IlBody");
-                let mut lines = Vec::new();
-                crate::print::il_lines(&il.instrs, d.interner, &|e| d.expr(e), 0, &mut lines);
-                d.nested(|d| {
-                    for l in lines {
-                        d.indent += l.depth;
-                        d.line(l.span, &l.text);
-                        d.indent -= l.depth;
-                    }
-                });
+                d.il(il);
+            }
+        });
+    }
+
+    fn il(&mut self, il: &IlBody) {
+        self.line(il.span, "IlBody");
+        let mut lines = Vec::new();
+        crate::print::il_lines(&il.instrs, self.interner, &|e| self.expr(e), 0, &mut lines);
+        self.nested(|d| {
+            for l in lines {
+                d.indent += l.depth;
+                d.line(l.span, &l.text);
+                d.indent -= l.depth;
             }
         });
     }
@@ -357,11 +361,18 @@ impl Dumper<'_> {
                                 d.line(t.span, &format!("{head} :"));
                                 d.nested(|d| d.stmts(body));
                             }
+                            TransitionCond::Il(il) => {
+                                d.line(t.span, &format!("{head} :"));
+                                d.nested(|d| d.il(il));
+                            }
                         }
                     }
                     SfcElement::Action(a) => {
                         d.line(a.span, &format!("Action {}", d.name(a.name)));
-                        d.nested(|d| d.stmts(&a.body));
+                        d.nested(|d| match &a.il {
+                            Some(il) => d.il(il),
+                            None => d.stmts(&a.body),
+                        });
                     }
                 }
             }
@@ -472,6 +483,7 @@ impl Dumper<'_> {
             StmtKind::Exit => self.line(s.span, "Exit"),
             StmtKind::Continue => self.line(s.span, "Continue"),
             StmtKind::Return => self.line(s.span, "Return"),
+            StmtKind::Il { body, .. } => self.il(body),
             StmtKind::Unsupported(exprs) => {
                 let parts: Vec<String> = exprs.iter().map(|e| self.expr(*e)).collect();
                 self.line(s.span, &format!("Unsupported {}", parts.join(" ")));

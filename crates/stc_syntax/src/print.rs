@@ -200,16 +200,26 @@ impl Printer<'_> {
                 p.line("END_ACTION");
             }
             if let Some(il) = &pou.il {
-                let mut lines = Vec::new();
-                il_lines(&il.instrs, p.interner, &|e| p.expr(e, 0), 0, &mut lines);
-                for l in lines {
-                    p.indent += l.depth;
-                    p.line(&l.text);
-                    p.indent -= l.depth;
-                }
+                p.il(il);
             }
         });
         self.line(pou.end_keyword());
+    }
+
+    fn il(&mut self, il: &IlBody) {
+        let mut lines = Vec::new();
+        il_lines(
+            &il.instrs,
+            self.interner,
+            &|e| self.expr(e, 0),
+            0,
+            &mut lines,
+        );
+        for l in lines {
+            self.indent += l.depth;
+            self.line(&l.text);
+            self.indent -= l.depth;
+        }
     }
 
     fn sfc(&mut self, sfc: &SfcBody) {
@@ -237,12 +247,19 @@ impl Printer<'_> {
                             self.line(&format!("{head} :"));
                             self.nested(|p| p.stmts(body));
                         }
+                        TransitionCond::Il(il) => {
+                            self.line(&format!("{head} :"));
+                            self.nested(|p| p.il(il));
+                        }
                     }
                     self.line("END_TRANSITION");
                 }
                 SfcElement::Action(a) => {
                     self.line(&format!("ACTION {} :", self.name(a.name)));
-                    self.nested(|p| p.stmts(&a.body));
+                    self.nested(|p| match &a.il {
+                        Some(il) => p.il(il),
+                        None => p.stmts(&a.body),
+                    });
                     self.line("END_ACTION");
                 }
             }
@@ -465,6 +482,7 @@ impl Printer<'_> {
     fn stmt(&mut self, s: &Stmt) {
         match &s.kind {
             StmtKind::Empty => self.line(";"),
+            StmtKind::Il { body, .. } => self.il(body),
             StmtKind::Error => self.line("(* unparsable statement *)"),
             StmtKind::Assign { target, value } => {
                 let text = format!("{} := {};", self.expr(*target, 0), self.expr(*value, 0));

@@ -16,8 +16,15 @@
 //!   name for a transition with a body, which assigns it) and, where
 //!   transitions compete for a step, whether it fires (`SFC$$f<i>`) and
 //!   whether the step was already taken this cycle (`SFC$$k$$<step>`);
-//! - per action an instance of the prelude's `SFC_ACTION_CONTROL`
-//!   (`SFC$$a$$<action>`).
+//! - per ACTION a variable of the prelude's structure `SFC_ACTION` (`Q, A :
+//!   BOOL`), named like the action beside the steps (`act.Q`, `inst.act.A`),
+//!   copied from its control after each call;
+//! - per action an instance of the prelude's `ACTION_CONTROL`, the
+//!   standard's block (`SFC$$a$$<action>`, `SFC$$v$$<variable>`).
+//!
+//! An action or transition body in IL is kept whole as one
+//! `StmtKind::Il` statement (a transition's stores its final current result
+//! in its condition variable).
 //!
 //! Names with `$` cannot be written by users. References the analyser will
 //! report (an unknown step, an undefined action, a second declaration of a
@@ -29,11 +36,15 @@ use crate::ast::*;
 use crate::intern::{Interner, Symbol};
 use crate::token::ElemType;
 
-/// The prelude function block that implements the action qualifiers.
-pub const ACTION_CONTROL: &str = "SFC_ACTION_CONTROL";
+/// The prelude function block that implements the action qualifiers: the
+/// standard's ACTION_CONTROL, which programs may use too.
+pub const ACTION_CONTROL: &str = "ACTION_CONTROL";
 
 /// The prelude structure of a step's flags, `X : BOOL; T : TIME`.
 pub const STEP_TYPE: &str = "SFC_STEP";
+
+/// The prelude structure of an action's flags, `Q : BOOL; A : BOOL`.
+pub const ACTION_TYPE: &str = "SFC_ACTION";
 
 /// The steps, actions and transitions of a chart, first declaration of each
 /// name only.
@@ -44,12 +55,13 @@ pub struct ChartNames<'a> {
 }
 
 impl<'a> ChartNames<'a> {
-    /// The chart's names, leaving out steps and named transitions with a
-    /// body whose names are variables of the POU (`declared`: the analyser
+    /// The chart's names, leaving out steps, actions and named transitions
+    /// with an ST body whose names are variables of the POU (`declared`: the analyser
     /// reports them).
     pub fn without(sfc: &'a SfcBody, declared: &[Symbol]) -> ChartNames<'a> {
         let mut names = ChartNames::of(sfc);
         names.steps.retain(|s| !declared.contains(&s.name.sym));
+        names.actions.retain(|a| !declared.contains(&a.name.sym));
         names.transitions.retain(|t| {
             !matches!(t.cond, TransitionCond::Body(_))
                 || t.name.is_none_or(|n| !declared.contains(&n.sym))
@@ -313,6 +325,12 @@ pub fn lower(
         step_decls.push(g.decl(s.name, TypeSpecKind::Named(ty), init));
     }
 
+    // The flags of the coded actions, beside the steps'.
+    for a in &chart.actions {
+        let ty = g.ident(ACTION_TYPE, a.name.span);
+        step_decls.push(g.decl(a.name, TypeSpecKind::Named(ty), None));
+    }
+
     // (1) The clock: step times grow by the time since the last cycle.
     decls.push(g.elem_decl("last", ElemType::Time, span));
     decls.push(g.elem_decl("run", ElemType::Bool, span));
@@ -376,6 +394,16 @@ pub fn lower(
                 vec![g.assign(target, *e, espan)]
             }
             TransitionCond::Body(stmts) => stmts.clone(),
+            TransitionCond::Il(il) => {
+                let result = Some(g.name(var));
+                vec![Stmt {
+                    kind: StmtKind::Il {
+                        body: Box::new(il.clone()),
+                        result,
+                    },
+                    span: il.span,
+                }]
+            }
         };
         body.push(g.if_(active, inner, sp));
     }
@@ -506,14 +534,15 @@ pub fn lower(
     for c in &controls {
         let name = g.ident(&format!("SFC$${}", c.role), c.span);
         decls.push(g.decl(name, TypeSpecKind::Named(ac_ty), None));
-        // The durations: the first association (in textual order) whose step
-        // is active sets the time of its qualifier.
+        // The duration (the block's one T): the first timed association (in
+        // textual order) whose step is active sets it; it is kept while
+        // none is.
         for &(s, a) in c.assocs.iter().rev() {
-            let (Some((q, _)), Some(d)) = (a.qualifier, a.duration) else {
+            let (Some(_), Some(d)) = (a.qualifier, a.duration) else {
                 continue;
             };
             let inst = g.hidden(&c.role, a.span);
-            let input = g.member(inst, &format!("{}_T", q.name()), a.span);
+            let input = g.member(inst, "T", a.span);
             let dspan = g.ast.expr(d).span;
             let set = g.assign(input, d, dspan);
             let active = g.flag(s.name, "X");
@@ -535,7 +564,7 @@ pub fn lower(
             }
             let value: Vec<ExprId> = steps.iter().map(|s| g.flag(*s, "X")).collect();
             let value = g.join(BinaryOp::Or, value, c.span);
-            let name = g.ident(q.name(), c.span);
+            let name = g.ident(q.input(), c.span);
             args.push(Arg {
                 kind: ArgKind::Input { name, value },
                 span: c.span,
@@ -553,6 +582,15 @@ pub fn lower(
             kind: StmtKind::Call(call),
             span: c.span,
         });
+        // A coded action's flags: `action.Q`, `action.A`.
+        if let Some(a) = c.body {
+            for flag in ["Q", "A"] {
+                let target = g.flag(a.name, flag);
+                let inst = g.hidden(&c.role, a.name.span);
+                let value = g.member(inst, flag, a.name.span);
+                body.push(g.assign(target, value, a.name.span));
+            }
+        }
     }
     // (6) Boolean variables take their action's Q; coded actions run while
     // their control's A is TRUE.
@@ -566,9 +604,18 @@ pub fn lower(
     }
     for c in &controls {
         if let Some(a) = c.body {
-            let inst = g.hidden(&c.role, a.name.span);
-            let run = g.member(inst, "A", a.name.span);
-            body.push(g.if_(run, a.body.clone(), a.span));
+            let run = g.flag(a.name, "A");
+            let stmts = match &a.il {
+                Some(il) => vec![Stmt {
+                    kind: StmtKind::Il {
+                        body: Box::new(il.clone()),
+                        result: None,
+                    },
+                    span: il.span,
+                }],
+                None => a.body.clone(),
+            };
+            body.push(g.if_(run, stmts, a.span));
         }
     }
 

@@ -628,16 +628,47 @@ impl Parser<'_> {
                     depth -= 1;
                     if depth == 0 {
                         let (close, op, operand) = (self.nth(n), self.nth(n + 1), self.nth(n + 2));
-                        return op.kind == TokenKind::Ident
-                            && IL_OPERATORS
+                        // The operator: a word of IL, or one of the
+                        // operators ST reserves (AND OR XOR NOT MOD, `&`).
+                        let il_word = match op.kind {
+                            TokenKind::Ident => IL_OPERATORS
                                 .iter()
-                                .any(|w| w.eq_ignore_ascii_case(self.text_of(op)))
+                                .any(|w| w.eq_ignore_ascii_case(self.text_of(op))),
+                            TokenKind::Amp
+                            | TokenKind::Kw(
+                                Keyword::And
+                                | Keyword::Or
+                                | Keyword::Xor
+                                | Keyword::Not
+                                | Keyword::Mod,
+                            ) => true,
+                            _ => false,
+                        };
+                        // Its operand on its line: a name, a literal, a
+                        // typed literal, or the `(` of a sequence; NOT and
+                        // RET stand alone.
+                        let alone = op.kind == TokenKind::Kw(Keyword::Not)
+                            || self.text_of(op).eq_ignore_ascii_case("RET");
+                        return il_word
                             && self.newline_between(close, op)
-                            && !self.newline_between(op, operand)
-                            && matches!(
-                                operand.kind,
-                                TokenKind::Ident | TokenKind::Int | TokenKind::Address
-                            );
+                            && (if self.newline_between(op, operand) {
+                                alone
+                            } else {
+                                matches!(
+                                    operand.kind,
+                                    TokenKind::Ident
+                                        | TokenKind::Int
+                                        | TokenKind::BasedInt
+                                        | TokenKind::Real
+                                        | TokenKind::Duration
+                                        | TokenKind::Address
+                                        | TokenKind::SString
+                                        | TokenKind::WString
+                                        | TokenKind::Elem(_)
+                                        | TokenKind::Kw(Keyword::True | Keyword::False)
+                                        | TokenKind::LParen
+                                )
+                            });
                     }
                 }
                 TokenKind::Eof | TokenKind::Semi => return false,

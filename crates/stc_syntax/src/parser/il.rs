@@ -66,6 +66,9 @@ impl Parser<'_> {
 
     fn il_body_end(&self) -> bool {
         let k = self.kind();
+        if self.in_chart_il && self.at_sfc_end() {
+            return true;
+        }
         k == TokenKind::Eof
             || is_item_end(k)
             || is_item_start(k)

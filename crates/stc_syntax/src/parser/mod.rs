@@ -123,6 +123,7 @@ pub fn parse_file_in(
         late_methods: Vec::new(),
         in_method: false,
         in_action: false,
+        in_chart_il: false,
         reserved_names: Vec::new(),
         unit: UnitPart::Outside,
     };
@@ -251,6 +252,9 @@ pub(crate) struct Parser<'a> {
     /// Inside an accessor of a PROPERTY: END_GET, END_SET and END_PROPERTY
     /// end its statement list.
     in_property: bool,
+    /// Inside an IL body of a chart's transition or action: the chart's
+    /// END words and its next element end the body.
+    in_chart_il: bool,
     /// The kind of the POU whose body is being parsed.
     pou_kind: Option<PouKind>,
     /// METHODs written after the statements of a function block's body (a

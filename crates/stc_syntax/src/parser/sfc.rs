@@ -13,8 +13,8 @@ use stc_diagnostics::{Code, Diagnostic, Span};
 
 use super::{is_item_end, is_item_start, Parser};
 use crate::ast::{
-    ActionAssoc, Ident, PouKind, Qualifier, SfcAction, SfcBody, SfcElement, SfcStep, SfcTransition,
-    Stmt, TransitionCond, VarBlock,
+    ActionAssoc, Ident, IlBody, PouKind, Qualifier, SfcAction, SfcBody, SfcElement, SfcStep,
+    SfcTransition, Stmt, TransitionCond, VarBlock,
 };
 use crate::token::{Keyword, TokenKind};
 
@@ -80,6 +80,26 @@ impl Parser<'_> {
 
     fn at_sfc_word(&self) -> bool {
         SFC_WORDS.iter().any(|w| self.at_word(w))
+    }
+
+    /// Whether an IL body of a chart ends here: at an END word of the
+    /// chart or where the next element starts (the words are not reserved,
+    /// so an IL operand may be named `STEP`: only the full forms count).
+    pub(super) fn at_sfc_end(&self) -> bool {
+        ["END_STEP", "END_TRANSITION", "END_ACTION"]
+            .iter()
+            .any(|w| self.at_word(w))
+            || self.at_step()
+            || self.at_transition()
+            || self.at_sfc_action()
+    }
+
+    /// An IL body inside a chart, up to the element's END.
+    fn sfc_il(&mut self) -> IlBody {
+        let outer = std::mem::replace(&mut self.in_chart_il, true);
+        let il = self.il_body();
+        self.in_chart_il = outer;
+        il
     }
 
     /// The chart, up to the END of the POU; its ST meaning is `body` and
@@ -307,7 +327,11 @@ impl Parser<'_> {
             }
             TransitionCond::Expr(e)
         } else if self.eat(TokenKind::Colon) {
-            TransitionCond::Body(self.sfc_stmts())
+            if !self.at_sfc_end() && self.at_il_body() {
+                TransitionCond::Il(self.sfc_il())
+            } else {
+                TransitionCond::Body(self.sfc_stmts())
+            }
         } else {
             self.expected("`:=` and the condition, or `:` and statements");
             self.skip_element("END_TRANSITION");
@@ -331,11 +355,16 @@ impl Parser<'_> {
         let t = self.bump();
         let name = self.intern_token(t);
         self.bump(); // `:`
-        let body = self.sfc_stmts();
+        let (body, il) = if !self.at_sfc_end() && self.at_il_body() {
+            (Vec::new(), Some(self.sfc_il()))
+        } else {
+            (self.sfc_stmts(), None)
+        };
         self.sfc_end("END_ACTION", opener, "action");
         SfcAction {
             name,
             body,
+            il,
             span: opener.to(self.prev().span()),
         }
     }
@@ -344,25 +373,6 @@ impl Parser<'_> {
     /// statement list).
     fn sfc_stmts(&mut self) -> Vec<Stmt> {
         let mut out = Vec::new();
-        if self.at_il_body() {
-            // Instruction List inside a chart: one E0030, skipped to the
-            // element's END.
-            let span = self.tok().span();
-            self.unsupported(
-                span,
-                "Instruction List in the actions and transitions of a chart is",
-            );
-            self.pou_partial = true;
-            while !self.at(TokenKind::Eof)
-                && !is_item_end(self.kind())
-                && !is_item_start(self.kind())
-                && !self.at_sfc_word()
-            {
-                self.bump();
-            }
-            self.superseded.push(span.to(self.prev().span()));
-            return out;
-        }
         while !self.aborted && !super::stmt::ends_stmt_list(self.kind()) && !self.at_sfc_word() {
             let before = self.pos;
             if let Some(s) = self.statement() {

@@ -787,6 +787,16 @@ steps active together (they are on alternative branches, for example), so
 the transition never fires. Converge alternative branches with one
 transition from each step, and join with `FROM (a, b)` only the branches
 one transition started together (`TO (a, b)`).";
+    W1204 Warning "unsafe chart: a step activated while active"
+"A step of a chart is active or not: it cannot be active twice. This
+transition can fire while one of the steps it activates is already active
+(and not one of the steps it deactivates), so that activation is lost and
+the branches of the chart no longer match: typically a branch of a
+simultaneous divergence (`TO (a, b)`) leads into another branch, or back
+to a step before the branches have converged. The sets of active steps are
+explored from the initial step, whatever the conditions. Join parallel
+branches with one simultaneous convergence (`FROM (a, b)`) before going
+back.";
     W1317 Warning "override without OVERRIDE"
 "A method of a derived block has the name and signature of a method of its
 base, so it overrides it (a call through the base runs this one), but it is

@@ -309,27 +309,55 @@ impl<'a> Sema<'a> {
         };
         let mask =
             |names: &[stc_syntax::ast::Ident]| names.iter().fold(0u128, |m, n| m | bit(n.sym));
-        let transitions: Vec<(u128, u128)> = chart
+        let transitions: Vec<(usize, u128, u128)> = chart
             .transitions
             .iter()
-            .filter(|t| chart.transition_valid(t))
-            .map(|t| (mask(&t.from), mask(&t.to)))
+            .enumerate()
+            .filter(|(_, t)| chart.transition_valid(t))
+            .map(|(i, t)| (i, mask(&t.from), mask(&t.to)))
             .collect();
         let mut seen: Vec<u128> = vec![bit(initial)];
         let mut todo = seen.clone();
-        while let Some(m) = todo.pop() {
-            for &(from, to) in &transitions {
+        // Transitions that can activate a step already active (W1204).
+        let mut unsafe_at: Vec<usize> = Vec::new();
+        let mut complete = true;
+        'explore: while let Some(m) = todo.pop() {
+            for &(i, from, to) in &transitions {
                 if m & from == from {
-                    let next = (m & !from) | to;
+                    let stays = m & !from;
+                    if stays & to != 0 && !unsafe_at.contains(&i) {
+                        unsafe_at.push(i);
+                    }
+                    let next = stays | to;
                     if !seen.contains(&next) {
                         if seen.len() >= 4096 {
-                            return;
+                            complete = false;
+                            break 'explore;
                         }
                         seen.push(next);
                         todo.push(next);
                     }
                 }
             }
+        }
+        unsafe_at.sort_unstable();
+        for i in unsafe_at {
+            let t = &chart.transitions[i];
+            let Some(first) = t.to.first() else { continue };
+            self.emit(
+                Diagnostic::new(
+                    Code::W1204,
+                    first.span,
+                    "this transition can activate a step that is already active: the chart is unsafe",
+                )
+                .with_label("may already be active")
+                .with_note(
+                    "a step is active once: the second activation is lost (a branch of a simultaneous divergence leads into another branch, or back before it has converged)",
+                ),
+            );
+        }
+        if !complete {
+            return;
         }
         for t in &chart.transitions {
             if t.from.len() < 2 || !chart.transition_valid(t) {

@@ -36,6 +36,29 @@ fn arg_value(a: &Arg) -> ExprId {
 impl<'a> Sema<'a> {
     /// Checks the arguments of a call whose callee is not known, for their
     /// own errors only.
+    /// The one positional argument of an operator-like call (`REF`,
+    /// `ADR`, `SIZEOF`); otherwise `code` at `span` with `msg` and
+    /// `label`, and the arguments checked loose.
+    pub(crate) fn one_argument(
+        &mut self,
+        args: &[Arg],
+        scope: Scope,
+        (code, span): (Code, Span),
+        msg: &str,
+        label: &str,
+    ) -> Option<ExprId> {
+        if let [Arg {
+            kind: ArgKind::Positional(x),
+            ..
+        }] = args
+        {
+            return Some(*x);
+        }
+        self.emit(Diagnostic::new(code, span, msg).with_label(label));
+        self.loose_args(args, scope);
+        None
+    }
+
     pub(crate) fn loose_args(&mut self, args: &[Arg], scope: Scope) {
         for a in args {
             self.check_expr(arg_value(a), Some(TypeId::ERROR), scope);
@@ -145,22 +168,16 @@ impl<'a> Sema<'a> {
                 }
                 if key == "REF" {
                     // The 3rd-edition reference operator.
-                    let [Arg {
-                        kind: ArgKind::Positional(x),
-                        ..
-                    }] = args
-                    else {
-                        self.emit(
-                            Diagnostic::new(
-                                Code::E1302,
-                                span,
-                                "REF takes one argument: the variable it refers to",
-                            )
-                            .with_label("`REF(x)`"),
-                        );
-                        self.loose_args(args, scope);
+                    let Some(x) = self.one_argument(
+                        args,
+                        scope,
+                        (Code::E1302, span),
+                        "REF takes one argument: the variable it refers to",
+                        "`REF(x)`",
+                    ) else {
                         return TypeId::ERROR;
                     };
+                    let x = &x;
                     let t = self.ref_of(*x, scope);
                     if t != TypeId::ERROR {
                         self.calls.insert(

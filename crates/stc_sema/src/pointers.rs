@@ -38,23 +38,15 @@ impl Sema<'_> {
     /// `ADR(x)`: a pointer to the variable `x`, of the type `Ptr(VOID)`
     /// that every pointer type takes when its view of `x` is allowed.
     pub(crate) fn adr_call(&mut self, e: ExprId, args: &[Arg], span: Span, scope: Scope) -> TypeId {
-        let [Arg {
-            kind: ArgKind::Positional(x),
-            ..
-        }] = args
-        else {
-            self.emit(
-                Diagnostic::new(
-                    Code::E1401,
-                    span,
-                    "ADR takes one argument: the variable it points at",
-                )
-                .with_label("`ADR(x)`"),
-            );
-            self.loose_args(args, scope);
+        let Some(x) = self.one_argument(
+            args,
+            scope,
+            (Code::E1401, span),
+            "ADR takes one argument: the variable it points at",
+            "`ADR(x)`",
+        ) else {
             return TypeId::ERROR;
         };
-        let x = *x;
         let t = self.check_expr(x, None, scope);
         if t == TypeId::ERROR {
             return TypeId::ERROR;
@@ -207,23 +199,15 @@ impl Sema<'_> {
         span: Span,
         scope: Scope,
     ) -> TypeId {
-        let [Arg {
-            kind: ArgKind::Positional(x),
-            ..
-        }] = args
-        else {
-            self.emit(
-                Diagnostic::new(
-                    Code::E1405,
-                    span,
-                    "SIZEOF takes one argument: a variable or a type",
-                )
-                .with_label("`SIZEOF(x)`"),
-            );
-            self.loose_args(args, scope);
+        let Some(x) = self.one_argument(
+            args,
+            scope,
+            (Code::E1405, span),
+            "SIZEOF takes one argument: a variable or a type",
+            "`SIZEOF(x)`",
+        ) else {
             return TypeId::ERROR;
         };
-        let x = *x;
         let t = match &self.ast.expr(x).kind {
             ExprKind::Name(id) if self.type_named(id.sym, scope).is_some() => {
                 self.type_named(id.sym, scope).unwrap_or(TypeId::ERROR)

@@ -380,15 +380,13 @@ impl Parser<'_> {
         })
     }
 
-    /// `METHOD [modifiers] name [: type] variables body END_METHOD`.
-    pub(crate) fn method(&mut self) -> Option<Method> {
-        let opener = self.bump().span();
+    /// The words between METHOD or PROPERTY and its name: an access
+    /// specifier, ABSTRACT, FINAL, OVERRIDE (each a modifier only when a
+    /// name follows it).
+    fn member_modifiers(&mut self) -> (Option<Access>, bool, bool, bool) {
         let mut access = None;
         let (mut is_abstract, mut is_final, mut is_override) = (false, false, false);
-        loop {
-            if self.nth_kind(1) != TokenKind::Ident {
-                break;
-            }
+        while self.nth_kind(1) == TokenKind::Ident {
             let word = self.text_of(self.tok()).to_ascii_uppercase();
             match word.as_str() {
                 "PUBLIC" => access = Some(Access::Public),
@@ -402,6 +400,13 @@ impl Parser<'_> {
             }
             self.bump();
         }
+        (access, is_abstract, is_final, is_override)
+    }
+
+    /// `METHOD [modifiers] name [: type] variables body END_METHOD`.
+    pub(crate) fn method(&mut self) -> Option<Method> {
+        let opener = self.bump().span();
+        let (access, is_abstract, is_final, is_override) = self.member_modifiers();
         let Some(name) = self.name("a method name") else {
             self.skip_unsupported("END_METHOD", |k| is_item_end(k) || is_item_start(k));
             return None;
@@ -448,25 +453,7 @@ impl Parser<'_> {
     /// `END_PROPERTY`: one method per accessor (see [`Method::property`]).
     pub(crate) fn property(&mut self) -> Vec<Method> {
         let opener = self.bump().span();
-        let mut access = None;
-        let (mut is_abstract, mut is_final, mut is_override) = (false, false, false);
-        while self.nth_kind(1) == TokenKind::Ident || self.nth_kind(1) == TokenKind::Colon {
-            if self.nth_kind(1) == TokenKind::Colon {
-                break;
-            }
-            let word = self.text_of(self.tok()).to_ascii_uppercase();
-            match word.as_str() {
-                "PUBLIC" => access = Some(Access::Public),
-                "PRIVATE" => access = Some(Access::Private),
-                "PROTECTED" => access = Some(Access::Protected),
-                "INTERNAL" => access = Some(Access::Internal),
-                "ABSTRACT" => is_abstract = true,
-                "FINAL" => is_final = true,
-                "OVERRIDE" => is_override = true,
-                _ => break,
-            }
-            self.bump();
-        }
+        let (access, is_abstract, is_final, is_override) = self.member_modifiers();
         let Some(name) = self.name("a property name") else {
             self.skip_unsupported("END_PROPERTY", |k| is_item_end(k) || is_item_start(k));
             return Vec::new();

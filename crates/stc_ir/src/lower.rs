@@ -78,6 +78,9 @@ pub fn lower(ast: &Ast, analysis: Analysis, interner: &Interner, sources: &Sourc
     // The implicit EN and ENO of a POU get storage only when some code
     // refers to them (they come after every declared variable, so dropping
     // them keeps every other VarId).
+    // (The blocks some block extends, once: asking each POU's question of
+    // every other POU made lowering quadratic in the number of POUs.)
+    let bases: rustc_hash::FxHashSet<PouId> = analysis.pous.iter().filter_map(|d| d.base).collect();
     let keeps: Vec<bool> = analysis
         .pous
         .iter()
@@ -86,10 +89,7 @@ pub fn lower(ast: &Ast, analysis: Analysis, interner: &Interner, sources: &Sourc
             // (A METHOD's hidden THIS is bound by every call.)
             // (A base's are also its derived blocks' hidden variables.)
             p.this.is_some()
-                || analysis
-                    .pous
-                    .iter()
-                    .any(|d| d.base == Some(PouId(i as u32)))
+                || bases.contains(&PouId(i as u32))
                 || p.vars.iter().enumerate().any(|(v, var)| {
                     var.implicit
                         && analysis

@@ -80,7 +80,8 @@ const char *stc_fault_text(uint32_t kind)
         [STC_FAULT_FOR_STEP_ZERO] = "FOR step of zero",
         [STC_FAULT_WATCHDOG] = "watchdog",
         [STC_FAULT_INVALID_CODE] = "invalid bytecode",
-        [STC_FAULT_NULL_REFERENCE] = "NULL dereference"
+        [STC_FAULT_NULL_REFERENCE] = "NULL dereference",
+        [STC_FAULT_POINTER_BOUNDS] = "pointer out of bounds"
     };
     const char *t = "unknown fault";
     if ((kind < (uint32_t)STC_N_FAULT_KINDS) && (texts[kind] != NULL)) {

@@ -17,7 +17,7 @@
 //!   the lowering tags each pointer with the index of its object's kind.
 
 use stc_diagnostics::{Code, Diagnostic, Span};
-use stc_syntax::ast::{Arg, ArgKind, BinaryOp, ExprId, ExprKind, PouKind};
+use stc_syntax::ast::{Arg, BinaryOp, ExprId, ExprKind, PouKind};
 use stc_syntax::token::ElemType;
 
 use crate::analyzer::{Scope, Sema};

@@ -201,17 +201,7 @@ impl Parser<'_> {
             None
         };
         let mut var_blocks = Vec::new();
-        while !self.aborted {
-            if self.at_var_block_start() {
-                if let Some(b) = self.var_block() {
-                    var_blocks.push(b);
-                }
-            } else if self.at(TokenKind::Semi) {
-                self.bump();
-            } else {
-                break;
-            }
-        }
+        self.var_blocks_into(&mut var_blocks);
         let mut methods = Vec::new();
         if kind == PouKind::FunctionBlock {
             while !self.aborted
@@ -380,6 +370,21 @@ impl Parser<'_> {
         })
     }
 
+    /// Variable sections (and stray `;`) up to what follows them.
+    fn var_blocks_into(&mut self, var_blocks: &mut Vec<VarBlock>) {
+        while !self.aborted {
+            if self.at_var_block_start() {
+                if let Some(b) = self.var_block() {
+                    var_blocks.push(b);
+                }
+            } else if self.at(TokenKind::Semi) {
+                self.bump();
+            } else {
+                break;
+            }
+        }
+    }
+
     /// The words between METHOD or PROPERTY and its name: an access
     /// specifier, ABSTRACT, FINAL, OVERRIDE (each a modifier only when a
     /// name follows it).
@@ -417,17 +422,7 @@ impl Parser<'_> {
             None
         };
         let mut var_blocks = Vec::new();
-        while !self.aborted {
-            if self.at_var_block_start() {
-                if let Some(b) = self.var_block() {
-                    var_blocks.push(b);
-                }
-            } else if self.at(TokenKind::Semi) {
-                self.bump();
-            } else {
-                break;
-            }
-        }
+        self.var_blocks_into(&mut var_blocks);
         let outer = std::mem::replace(&mut self.in_method, true);
         let body = self.stmt_list(false);
         self.in_method = outer;
@@ -504,17 +499,7 @@ impl Parser<'_> {
                     span: name.span,
                 });
             }
-            while !self.aborted {
-                if self.at_var_block_start() {
-                    if let Some(b) = self.var_block() {
-                        var_blocks.push(b);
-                    }
-                } else if self.at(TokenKind::Semi) {
-                    self.bump();
-                } else {
-                    break;
-                }
-            }
+            self.var_blocks_into(&mut var_blocks);
             let outer = std::mem::replace(&mut self.in_method, true);
             let outer_property = std::mem::replace(&mut self.in_property, true);
             let body = self.stmt_list(false);

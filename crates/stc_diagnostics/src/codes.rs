@@ -642,6 +642,29 @@ Use `:=` for other values.";
 has no GET (it can only be written) or no SET (it can only be read). Add
 the accessor to the PROPERTY, or use it the way it allows.";
 
+    E1329 Error "unknown namespace"
+"A `USING` directive names a namespace that no `NAMESPACE ... END_NAMESPACE`
+of the project declares. The name is read relative to the namespaces around
+the directive (innermost first), then from the top. Check its spelling, or
+declare the namespace.";
+    E1330 Error "ambiguous name from USING"
+"The name is not declared in the namespaces around its use, and two
+namespaces named by `USING` directives of the same level both declare it,
+so which one is meant is not said. Write the name with its namespace
+(`Drives.Motor`), or remove one of the `USING` directives.";
+    E1331 Error "INTERNAL element outside its namespace"
+"An element of a namespace declared `INTERNAL` (`FUNCTION_BLOCK INTERNAL
+Helper`), and a METHOD declared `METHOD INTERNAL` of a block declared in a
+namespace, can be used only inside that namespace and the namespaces nested
+in it. Use it there, or remove INTERNAL from its declaration to make it
+public. (A `VAR INTERNAL` variable is likewise visible from outside its
+instance only inside the namespace: elsewhere it is an E0104.)";
+    E1332 Error "not allowed in a namespace"
+"A namespace holds data types, functions, function blocks, classes,
+interfaces and other namespaces. PROGRAMs, CONFIGURATIONs and VAR_GLOBAL
+sections are declared outside every namespace. stc reads this one as if it
+stood after END_NAMESPACE.";
+
     E1401 Error "ADR needs a variable"
 "`ADR(x)` is a pointer to the variable `x` (or a member or element of one,
 or what a pointer or reference points at). It needs a variable that is not
@@ -771,6 +794,15 @@ the integer's type; SHR of a signed integer is an arithmetic shift (the
 sign bit fills in, as CODESYS does), SHL, ROL and ROR work on the bits.
 Convert explicitly (`WORD_TO_INT(SHR(INT_TO_WORD(x), 1))`) to follow the
 standard; `--std iec2` refuses the form.";
+    W0117 Warning "library qualifier read as the element's name"
+"CODESYS and TwinCAT name an element of a library with the library's
+namespace in front (`Tc2_Standard.TON`, `OSCAT_BASIC.CTRL_PI`). When the
+part before the last dot names no namespace of the project, stc reads the
+name as the element's own (`TON`), found as if written without the
+qualifier, and says so with this warning: compiled with its library's
+sources, the code means the same. Declare the namespace (`NAMESPACE
+Tc2_Standard ... END_NAMESPACE`) or drop the qualifier; `--std iec2`
+refuses the form.";
     W1201 Warning "step can never become active"
 "No sequence of transitions leads from the initial step to this step: it
 is never active and its actions never run by it. A step is reached when a

@@ -4058,6 +4058,23 @@ END_PROGRAM
 ",
     ),
     (
+        Code::W0117,
+        r"PROGRAM Main
+    VAR
+        t : Tc2_Standard.TON; // W0117
+    END_VAR
+    t(IN := TRUE, PT := T#1s);
+END_PROGRAM
+",
+        r"PROGRAM Main
+    VAR
+        t : TON;
+    END_VAR
+    t(IN := TRUE, PT := T#1s);
+END_PROGRAM
+",
+    ),
+    (
         Code::E1328,
         r"FUNCTION_BLOCK Gauge
 VAR level : INT := 3; END_VAR
@@ -4086,6 +4103,124 @@ END_FUNCTION_BLOCK
 PROGRAM Main
 VAR g : Gauge; x : INT; END_VAR
     x := g.Level2;
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1329,
+        r"NAMESPACE Drives
+    FUNCTION Scale : INT
+        VAR_INPUT x : INT; END_VAR
+        Scale := x * 2;
+    END_FUNCTION
+END_NAMESPACE
+
+PROGRAM Main
+    USING Drive; // E1329
+    VAR y : INT; END_VAR
+    y := Drives.Scale(2);
+END_PROGRAM
+",
+        r"NAMESPACE Drives
+    FUNCTION Scale : INT
+        VAR_INPUT x : INT; END_VAR
+        Scale := x * 2;
+    END_FUNCTION
+END_NAMESPACE
+
+PROGRAM Main
+    USING Drives;
+    VAR y : INT; END_VAR
+    y := Scale(2);
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1330,
+        r"NAMESPACE A
+    FUNCTION F : INT
+        F := 1;
+    END_FUNCTION
+END_NAMESPACE
+
+NAMESPACE B
+    FUNCTION F : INT
+        F := 2;
+    END_FUNCTION
+END_NAMESPACE
+
+PROGRAM Main
+    USING A, B;
+    VAR y : INT; END_VAR
+    y := F(); // E1330
+END_PROGRAM
+",
+        r"NAMESPACE A
+    FUNCTION F : INT
+        F := 1;
+    END_FUNCTION
+END_NAMESPACE
+
+NAMESPACE B
+    FUNCTION F : INT
+        F := 2;
+    END_FUNCTION
+END_NAMESPACE
+
+PROGRAM Main
+    USING A, B;
+    VAR y : INT; END_VAR
+    y := B.F();
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1331,
+        r"NAMESPACE Lib
+    FUNCTION INTERNAL Helper : INT
+        Helper := 7;
+    END_FUNCTION
+END_NAMESPACE
+
+PROGRAM Main
+    VAR y : INT; END_VAR
+    y := Lib.Helper(); // E1331
+END_PROGRAM
+",
+        r"NAMESPACE Lib
+    FUNCTION INTERNAL Helper : INT
+        Helper := 7;
+    END_FUNCTION
+
+    FUNCTION Value : INT
+        Value := Helper();
+    END_FUNCTION
+END_NAMESPACE
+
+PROGRAM Main
+    VAR y : INT; END_VAR
+    y := Lib.Value();
+END_PROGRAM
+",
+    ),
+    (
+        Code::E1332,
+        r"NAMESPACE Lib
+    PROGRAM Main // E1332
+        VAR y : INT; END_VAR
+        y := 1;
+    END_PROGRAM
+END_NAMESPACE
+",
+        r"NAMESPACE Lib
+    FUNCTION One : INT
+        One := 1;
+    END_FUNCTION
+END_NAMESPACE
+
+PROGRAM Main
+    VAR y : INT; END_VAR
+    y := Lib.One();
 END_PROGRAM
 ",
     ),

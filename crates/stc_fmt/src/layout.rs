@@ -144,6 +144,9 @@ enum Block {
     For,
     While,
     Repeat,
+    /// `NAMESPACE ... END_NAMESPACE` (3rd edition; identifiers): its items
+    /// one level in.
+    Namespace,
     /// The elements of a Sequential Function Chart (their words are not
     /// reserved: recognised at the start of a statement of a POU body).
     Step,
@@ -201,6 +204,9 @@ struct Layout<'a> {
     prev_unary: bool,
     prev_was_line_comment: bool,
     prev_was_trivia: bool,
+    /// On the head line of a NAMESPACE: its first item follows without a
+    /// blank line.
+    in_ns_head: bool,
     /// Indentation of the current output line.
     line_indent: usize,
     il: &'a IlRegions,
@@ -255,6 +261,7 @@ pub(crate) fn layout(
         prev_unary: false,
         prev_was_line_comment: false,
         prev_was_trivia: false,
+        in_ns_head: false,
         line_indent: 0,
         il,
         il_body: None,
@@ -443,6 +450,7 @@ impl<'a> Layout<'a> {
         // Where this token's line must start, if it must start one.
         let mut forced: Option<usize> = None;
         let mut blank = newlines > 1;
+        let after_ns_head = newlines > 0 && std::mem::take(&mut self.in_ns_head);
         let mut push: Option<Block> = None;
 
         if self.var_header {
@@ -466,7 +474,8 @@ impl<'a> Layout<'a> {
         if newlines > 0 {
             self.end_head_line();
         }
-        let top_level = self.stack.is_empty();
+        // Between items: outside everything, or directly in namespaces.
+        let top_level = self.stack.iter().all(|f| f.block == Block::Namespace);
         let in_config = matches!(top.map(|f| f.block), Some(Block::Config | Block::Resource));
         let sfc_open = self.sfc_opens(i, top);
         let sfc_close = self.sfc_closes(i);
@@ -484,9 +493,26 @@ impl<'a> Layout<'a> {
                     forced = Some(self.body_level());
                 }
             }
+            TokenKind::Ident if top_level && self.opens_namespace(i) => {
+                forced = Some(self.body_level());
+                blank |= self.prev_tok.is_some() && !self.prev_was_trivia && !after_ns_head;
+                push = Some(Block::Namespace);
+                self.in_ns_head = true;
+            }
+            TokenKind::Ident
+                if self.src(i).eq_ignore_ascii_case("END_NAMESPACE")
+                    && self
+                        .stack
+                        .last()
+                        .is_some_and(|f| f.block == Block::Namespace) =>
+            {
+                if let Some(f) = self.stack.pop() {
+                    forced = Some(f.indent);
+                }
+            }
             TokenKind::Ident if top_level && self.opens_class(i) => {
                 forced = Some(self.body_level());
-                blank |= self.prev_tok.is_some() && !self.prev_was_trivia;
+                blank |= self.prev_tok.is_some() && !self.prev_was_trivia && !after_ns_head;
                 push = Some(Block::Pou);
             }
             TokenKind::Ident if self.closes_class(i) => {
@@ -527,24 +553,28 @@ impl<'a> Layout<'a> {
             }
             TokenKind::Kw(k) if is_var_keyword(k) => {
                 forced = Some(self.body_level());
-                blank |= top_level && self.prev_tok.is_some() && !self.prev_was_trivia;
+                blank |=
+                    top_level && self.prev_tok.is_some() && !self.prev_was_trivia && !after_ns_head;
                 push = Some(Block::Var);
             }
             TokenKind::Kw(Keyword::Type) => {
                 forced = Some(self.body_level());
-                blank |= top_level && self.prev_tok.is_some() && !self.prev_was_trivia;
+                blank |=
+                    top_level && self.prev_tok.is_some() && !self.prev_was_trivia && !after_ns_head;
                 push = Some(Block::Type);
             }
             TokenKind::Kw(Keyword::Program | Keyword::Function | Keyword::FunctionBlock)
                 if !in_config =>
             {
                 forced = Some(self.body_level());
-                blank |= top_level && self.prev_tok.is_some() && !self.prev_was_trivia;
+                blank |=
+                    top_level && self.prev_tok.is_some() && !self.prev_was_trivia && !after_ns_head;
                 push = Some(Block::Pou);
             }
             TokenKind::Kw(Keyword::Configuration) => {
                 forced = Some(self.body_level());
-                blank |= top_level && self.prev_tok.is_some() && !self.prev_was_trivia;
+                blank |=
+                    top_level && self.prev_tok.is_some() && !self.prev_was_trivia && !after_ns_head;
                 push = Some(Block::Config);
             }
             TokenKind::Kw(Keyword::Resource) => {
@@ -789,6 +819,16 @@ impl<'a> Layout<'a> {
                 .is_some_and(|t| t.kind == TokenKind::Ident)
     }
 
+    /// `NAMESPACE` opening a namespace (followed by its name, or INTERNAL
+    /// and its name).
+    fn opens_namespace(&self, i: usize) -> bool {
+        self.src(i).eq_ignore_ascii_case("NAMESPACE")
+            && self
+                .toks
+                .get(i + 1)
+                .is_some_and(|t| t.kind == TokenKind::Ident)
+    }
+
     /// `CLASS` or `INTERFACE` opening a POU (3rd edition; identifiers),
     /// followed by its name.
     fn opens_class(&self, i: usize) -> bool {
@@ -860,7 +900,12 @@ impl<'a> Layout<'a> {
             if f.header
                 && matches!(
                     f.block,
-                    Block::Pou | Block::Method | Block::Property | Block::Config | Block::Resource
+                    Block::Pou
+                        | Block::Method
+                        | Block::Property
+                        | Block::Config
+                        | Block::Resource
+                        | Block::Namespace
                 )
             {
                 f.header = false;

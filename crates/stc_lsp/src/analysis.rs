@@ -193,6 +193,9 @@ impl Project {
                         vars_of(&r.var_blocks, &mut out);
                     }
                 }
+                // Their elements are listed by their own names (an
+                // approximation: the language server does not scope them).
+                Item::Namespace(_) | Item::EndNamespace(_) | Item::Using(_) => {}
             }
         }
         out

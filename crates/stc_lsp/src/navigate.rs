@@ -149,6 +149,9 @@ impl Project {
                         crate::analysis::vars_of(&r.var_blocks, &mut tmp);
                     }
                 }
+                // Their elements are listed by their own names (an
+                // approximation: the language server does not scope them).
+                Item::Namespace(_) | Item::EndNamespace(_) | Item::Using(_) => {}
             }
         }
         for (s, span, d) in tmp {

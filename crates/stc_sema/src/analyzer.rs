@@ -47,6 +47,8 @@ pub(crate) enum State {
 
 pub(crate) struct TypeDeclEntry<'a> {
     pub decl: &'a TypeDecl,
+    /// Its name with its namespace (`Drives.Speed`), the type's name.
+    pub name: stc_syntax::Symbol,
     pub state: State,
     pub ty: TypeId,
     pub init: Option<InitValue>,
@@ -162,6 +164,8 @@ pub(crate) struct Sema<'a> {
     /// The type of the current result at the end of an IL body of a
     /// chart's transition, by the place it is stored in.
     pub il_results: FxHashMap<ExprId, TypeId>,
+    /// The project's namespaces and each item's scope.
+    pub(crate) ns: crate::namespaces::Namespaces,
 }
 
 impl<'a> Sema<'a> {
@@ -219,6 +223,7 @@ impl<'a> Sema<'a> {
             statics: FxHashMap::default(),
             inst_vars: FxHashMap::default(),
             il_results: FxHashMap::default(),
+            ns: Default::default(),
         }
     }
 

@@ -76,7 +76,12 @@ impl<'a> Sema<'a> {
     ) -> TypeId {
         let span = self.ast.expr(e).span;
         let callee_span = self.ast.expr(callee).span;
-        if let ExprKind::Name(id) = &self.ast.expr(callee).kind {
+        let named = match &self.ast.expr(callee).kind {
+            ExprKind::Name(id) => Some(*id),
+            ExprKind::Member { .. } => self.qualified_callee(callee, scope),
+            _ => None,
+        };
+        if let Some(id) = named.as_ref() {
             // In call position a function block instance is called; any other
             // variable (a function's own result, `max : INT`) does not hide
             // the function of the same name.
@@ -85,7 +90,7 @@ impl<'a> Sema<'a> {
                     Some(v) => {
                         self.ensure_var(p, v);
                         let var = self.pous[p.0 as usize].var(v);
-                        let callable_elsewhere = self.names.contains_key(&id.sym)
+                        let callable_elsewhere = self.is_global_name(*id)
                             || stc_values::lookup(self.interner.key(id.sym)).is_some();
                         let fb = matches!(self.types.kind(var.ty), TypeKind::Fb(_));
                         fb || var.ty == TypeId::ERROR || !callable_elsewhere
@@ -108,7 +113,7 @@ impl<'a> Sema<'a> {
                     }
                 }
                 let shown = self.spelled(id.sym, id.span);
-                match self.names.get(&id.sym).copied() {
+                match self.global_name(*id) {
                     Some(GlobalName::Pou(q)) => match self.pous[q.0 as usize].kind {
                         PouKind::Function => return self.function_call(e, q, args, scope, span),
                         PouKind::FunctionBlock => {
@@ -358,6 +363,22 @@ impl<'a> Sema<'a> {
         // PROTECTED: also from the blocks derived from it.
         let protected = access == Some(stc_syntax::ast::Access::Protected);
         let inside = matches!(scope, Scope::Pou(p) if self.own_instance(p).is_some_and(|o| o == fb || protected && self.types.is_subtype(o, fb)));
+        if access == Some(stc_syntax::ast::Access::Internal) && !self.in_namespace_of(fb, name_span)
+        {
+            let shown = self.sym_name(self.pous[m.0 as usize].name);
+            let home = self.namespace_of(fb).unwrap_or_default();
+            self.emit(
+                Diagnostic::new(
+                    Code::E1331,
+                    name_span,
+                    format!("the method `{shown}` is INTERNAL to namespace `{home}`"),
+                )
+                .with_secondary(self.pous[m.0 as usize].name_span, "declared here")
+                .with_help("call it from inside the namespace, or declare it PUBLIC"),
+            );
+            self.loose_args(args, scope);
+            return TypeId::ERROR;
+        }
         if private && !inside {
             let shown = self.sym_name(self.pous[m.0 as usize].name);
             let decl = self.pous[m.0 as usize].name_span;
@@ -1506,7 +1527,7 @@ impl<'a> Sema<'a> {
             ExprKind::Name(id) => {
                 if self.pous[p.0 as usize].lookup(id.sym).is_none() {
                     let shown = self.spelled(id.sym, id.span);
-                    let is_other = self.names.contains_key(&id.sym)
+                    let is_other = self.is_global_name(*id)
                         || self.enum_candidates(id.sym, scope).next().is_some();
                     if is_other {
                         let what = if how == Write::Assign {

@@ -43,7 +43,7 @@ impl<'a> Sema<'a> {
             if let Some(b) = ast.extends {
                 any = true;
                 let shown = self.spelled(b.sym, b.span);
-                match self.names.get(&b.sym).copied() {
+                match self.global_name(b) {
                     Some(GlobalName::Pou(q)) if q == pid => {
                         self.emit(
                             Diagnostic::new(
@@ -105,7 +105,7 @@ impl<'a> Sema<'a> {
             for i in &ast.implements {
                 any = true;
                 let shown = self.spelled(i.sym, i.span);
-                match self.names.get(&i.sym).copied() {
+                match self.global_name(*i) {
                     Some(GlobalName::Pou(q))
                         if q != pid
                             && self.pous[q.0 as usize].class == Some(ClassKind::Interface) =>

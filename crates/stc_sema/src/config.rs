@@ -223,7 +223,7 @@ impl<'a> Sema<'a> {
                 },
                 None => None,
             };
-            let pou = match self.names.get(&inst.type_name.sym).copied() {
+            let pou = match self.global_name(inst.type_name) {
                 Some(GlobalName::Pou(p)) if self.pous[p.0 as usize].kind == PouKind::Program => p,
                 other => {
                     let shown = self.spelled(inst.type_name.sym, inst.type_name.span);

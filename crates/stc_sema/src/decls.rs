@@ -95,14 +95,17 @@ impl<'a> Sema<'a> {
 
     pub(crate) fn collect(&mut self) {
         let ast = self.ast;
+        let item_ns = self.build_namespaces();
         for (i, item) in ast.items.iter().enumerate() {
             match item {
                 Item::Types(decls, _) => {
                     for d in decls {
                         let idx = self.type_decls.len();
-                        if self.register(d.name, GlobalName::Type(idx)) {
+                        let name = self.qualify(d.name, item_ns[i]);
+                        if self.register(name, GlobalName::Type(idx)) {
                             self.type_decls.push(TypeDeclEntry {
                                 decl: d,
+                                name: name.sym,
                                 state: State::Todo,
                                 ty: TypeId::ERROR,
                                 init: None,
@@ -112,8 +115,12 @@ impl<'a> Sema<'a> {
                 }
                 Item::Pou(p) => {
                     let id = PouId(self.pous.len() as u32);
-                    if !self.register(p.name, GlobalName::Pou(id)) {
+                    let name = self.qualify(p.name, item_ns[i]);
+                    if !self.register(name, GlobalName::Pou(id)) {
                         continue;
+                    }
+                    if p.internal {
+                        self.mark_internal(name.sym, item_ns[i]);
                     }
                     if p.kind == PouKind::Function && !self.in_prelude(p.name.span) {
                         let key = self.interner.key(p.name.sym);
@@ -134,6 +141,7 @@ impl<'a> Sema<'a> {
                         }
                     }
                     let fb = self.collect_pou(i, p, None);
+                    self.pous[fb.0 as usize].name = name.sym;
                     for (k, m) in p.methods.iter().enumerate() {
                         self.collect_method(i, fb, k, m);
                     }
@@ -145,6 +153,7 @@ impl<'a> Sema<'a> {
                     let ids = self.add_globals(block, GlobalOwner::TopLevel);
                     self.top_globals.extend(ids);
                 }
+                Item::Namespace(_) | Item::EndNamespace(_) | Item::Using(_) => {}
             }
         }
     }
@@ -484,9 +493,9 @@ impl<'a> Sema<'a> {
         }
         self.type_decls[i].state = State::InProgress;
         let decl = self.type_decls[i].decl;
-        let (mut ty, mut init) =
-            self.resolve_type_spec(&decl.spec, Scope::Global, Some(decl.name.sym));
-        if self.types.get(ty).name == Some(decl.name.sym) {
+        let name = self.type_decls[i].name;
+        let (mut ty, mut init) = self.resolve_type_spec(&decl.spec, Scope::Global, Some(name));
+        if self.types.get(ty).name == Some(name) {
             self.types.set_name_span(ty, decl.name.span);
         }
         if let Some(i) = &decl.init {
@@ -839,7 +848,7 @@ impl<'a> Sema<'a> {
                 // A reference to a named type being declared (`next :
                 // REF_TO Node` inside Node) is completed when the type is.
                 if let TypeSpecKind::Named(id) = &target.kind {
-                    if let Some(GlobalName::Type(i)) = self.names.get(&id.sym).copied() {
+                    if let Some(GlobalName::Type(i)) = self.global_name(*id) {
                         if self.type_decls[i].state == State::InProgress {
                             if let Some(&r) = self.pending_refs.get(&(i, ptr)) {
                                 return (r, None);
@@ -869,7 +878,7 @@ impl<'a> Sema<'a> {
     }
 
     fn named_type(&mut self, id: Ident) -> (TypeId, Option<InitValue>) {
-        match self.names.get(&id.sym).copied() {
+        match self.global_name(id) {
             Some(GlobalName::Type(i)) => self.resolve_type_decl(i),
             Some(GlobalName::Pou(p)) => match self.pous[p.0 as usize].kind {
                 PouKind::Function => {

@@ -199,8 +199,9 @@ impl<'a> Sema<'a> {
     }
 
     /// Whether variable `v` of block `p` is declared in a `VAR PUBLIC` or
-    /// `VAR INTERNAL` section (3rd edition): visible outside its instance.
-    fn public_var(&self, p: PouId, v: crate::VarId) -> bool {
+    /// `VAR INTERNAL` section (3rd edition): visible outside its instance
+    /// (INTERNAL: from inside the block's namespace, `at` the use).
+    fn public_var(&self, p: PouId, v: crate::VarId, at: Span) -> bool {
         let Some(Some(src)) = self
             .pou_var_src
             .get(p.0 as usize)
@@ -209,10 +210,11 @@ impl<'a> Sema<'a> {
             return false;
         };
         src.block.kind == stc_syntax::ast::VarKind::Var
-            && matches!(
-                src.block.access,
-                Some(stc_syntax::ast::Access::Public | stc_syntax::ast::Access::Internal)
-            )
+            && match src.block.access {
+                Some(stc_syntax::ast::Access::Public) => true,
+                Some(stc_syntax::ast::Access::Internal) => self.in_namespace_of(p, at),
+                _ => false,
+            }
     }
 
     /// A name in POU `p` that is not one of its own variables: `THIS`,
@@ -472,7 +474,7 @@ impl<'a> Sema<'a> {
     ) -> TypeId {
         let prefix_ty = match l.prefix {
             Some(TypePrefix::Elem(t, _)) => Some(self.types.elem(t)),
-            Some(TypePrefix::Named(id)) => match self.names.get(&id.sym).copied() {
+            Some(TypePrefix::Named(id)) => match self.global_name(id) {
                 Some(GlobalName::Type(i)) => Some(self.resolve_type_decl(i).0),
                 _ => {
                     let shown = self.spelled(id.sym, id.span);
@@ -727,7 +729,7 @@ impl<'a> Sema<'a> {
             // its context (LEN, FIND, TRUNC: ANY_INT out): `LEN(s) < pos`
             // compares INTs when `pos` is an INT, as with a literal.
             ExprKind::Call { callee, .. } => match &self.ast.expr(*callee).kind {
-                ExprKind::Name(id) if !self.names.contains_key(&id.sym) => {
+                ExprKind::Name(id) if !self.is_global_name(*id) => {
                     let f = stc_values::lookup(self.interner.key(id.sym));
                     f.is_some_and(|f| match f.ret {
                         stc_values::TyPat::Var(k, _) => !f
@@ -893,7 +895,7 @@ impl<'a> Sema<'a> {
             return t;
         }
         let shown = self.spelled(id.sym, id.span);
-        if let Some(g) = self.names.get(&id.sym).copied() {
+        if let Some(g) = self.global_name(id) {
             let what = match g {
                 GlobalName::Type(_) => "a data type",
                 GlobalName::Config(_) => "a configuration",
@@ -1139,7 +1141,7 @@ impl<'a> Sema<'a> {
     }
 
     fn qualified_enum(&mut self, e: ExprId, ty: Ident, value: Ident) -> TypeId {
-        let t = match self.names.get(&ty.sym).copied() {
+        let t = match self.global_name(ty) {
             Some(GlobalName::Type(i)) => self.resolve_type_decl(i).0,
             _ => {
                 let shown = self.spelled(ty.sym, ty.span);
@@ -1220,7 +1222,7 @@ impl<'a> Sema<'a> {
                 }
                 let public = self.pous[p.0 as usize]
                     .lookup(member.sym)
-                    .is_some_and(|v| self.public_var(p, v));
+                    .is_some_and(|v| self.public_var(p, v, member.span));
                 let pou = &self.pous[p.0 as usize];
                 match pou.lookup(member.sym) {
                     Some(v)

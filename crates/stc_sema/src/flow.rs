@@ -118,14 +118,21 @@ impl<'a> Sema<'a> {
             // known where the POU runs: `check_hidden_globals`.)
             // An instance or variable named after its own type (`T_PLC_MS :
             // T_PLC_MS;`, a PC WORX idiom) hides nothing it could mean.
-            let own_type = match self.names.get(&v.name).copied() {
+            let global = self
+                .find_global(stc_syntax::ast::Ident {
+                    sym: v.name,
+                    span: v.span,
+                })
+                .hit
+                .map(|(g, _)| g);
+            let own_type = match global {
                 Some(GlobalName::Type(i)) => self.type_decls[i].ty == ty,
                 Some(GlobalName::Pou(q)) => {
                     matches!(self.types.kind(ty), TypeKind::Fb(r) if *r == q)
                 }
                 _ => false,
             };
-            let hidden = match self.names.get(&v.name).copied() {
+            let hidden = match global {
                 _ if own_type => None,
                 Some(GlobalName::Type(_)) => Some("a data type"),
                 Some(GlobalName::Pou(q)) if !self.pous[q.0 as usize].is_std => {

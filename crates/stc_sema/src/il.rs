@@ -366,7 +366,7 @@ impl<'a> Sema<'a> {
                     // A user function: the type of its first input.
                     if let ExprKind::Name(f) = &self.ast.expr(*callee).kind {
                         if let Some(crate::analyzer::GlobalName::Pou(q)) =
-                            self.names.get(&f.sym).copied()
+                            self.find_global(*f).hit.map(|(g, _)| g)
                         {
                             self.resolve_pou(q);
                             let def = &self.pous[q.0 as usize];

@@ -24,6 +24,7 @@ mod flow;
 pub mod idx;
 pub use pointers::byte_like;
 mod il;
+mod namespaces;
 mod pointers;
 pub mod prelude;
 mod properties;

@@ -209,8 +209,8 @@ impl Sema<'_> {
             return TypeId::ERROR;
         };
         let t = match &self.ast.expr(x).kind {
-            ExprKind::Name(id) if self.type_named(id.sym, scope).is_some() => {
-                self.type_named(id.sym, scope).unwrap_or(TypeId::ERROR)
+            ExprKind::Name(id) if self.type_named(*id, scope).is_some() => {
+                self.type_named(*id, scope).unwrap_or(TypeId::ERROR)
             }
             _ => self.check_expr(x, None, scope),
         };
@@ -715,7 +715,8 @@ impl Sema<'_> {
 
     /// The type a name in `SIZEOF(name)` denotes, when it is a type's and
     /// not a variable's: a declared type or a function block.
-    fn type_named(&mut self, sym: stc_syntax::Symbol, scope: Scope) -> Option<TypeId> {
+    fn type_named(&mut self, id: stc_syntax::ast::Ident, scope: Scope) -> Option<TypeId> {
+        let sym = id.sym;
         if let Scope::Pou(p) = scope {
             if self.pous[p.0 as usize].lookup(sym).is_some() {
                 return None;
@@ -724,7 +725,7 @@ impl Sema<'_> {
         if let Some(e) = ElemType::from_name(self.interner.key(sym)) {
             return Some(self.types.elem(e));
         }
-        match self.names.get(&sym).copied() {
+        match self.global_name(id) {
             Some(crate::analyzer::GlobalName::Type(i)) => Some(self.resolve_type_decl(i).0),
             Some(crate::analyzer::GlobalName::Pou(p))
                 if self.pous[p.0 as usize].kind == PouKind::FunctionBlock =>

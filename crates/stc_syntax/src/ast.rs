@@ -629,6 +629,12 @@ pub struct Pou {
     pub is_abstract: bool,
     /// `FUNCTION_BLOCK FINAL`.
     pub is_final: bool,
+    /// `FUNCTION_BLOCK INTERNAL`: inside a namespace, visible only within
+    /// it.
+    pub internal: bool,
+    /// The POU's `USING` directives (after its name, or a FUNCTION's
+    /// result type), each namespace as written.
+    pub usings: Vec<Ident>,
 }
 
 /// What a POU of kind FUNCTION_BLOCK was declared as, when not
@@ -804,6 +810,38 @@ pub enum Item {
     /// A VAR_GLOBAL block outside any configuration (a global variable list
     /// as CODESYS-style projects write them).
     GlobalVars(VarBlock),
+    /// `NAMESPACE [INTERNAL] A.B`: the items up to the matching
+    /// [`Item::EndNamespace`] belong to the namespace (3rd edition; items
+    /// stay flat so every pass that walks them needs no recursion, and the
+    /// analyser gives each item its scope, see `stc_sema::namespaces`).
+    Namespace(NamespaceDecl),
+    /// `END_NAMESPACE` closing the innermost open namespace.
+    EndNamespace(Span),
+    /// `USING A.B, C;` between items: the namespaces named are searched for
+    /// the names the following items of the same namespace (or, at the top
+    /// level, of the same file) use.
+    Using(UsingDecl),
+}
+
+/// The opening of a namespace.
+#[derive(Clone, PartialEq, Debug)]
+pub struct NamespaceDecl {
+    /// As written: one name or a dotted path (`NAMESPACE A.B` opens B
+    /// inside A).
+    pub name: Ident,
+    /// `NAMESPACE INTERNAL`.
+    pub internal: bool,
+    /// From `NAMESPACE` to the name.
+    pub span: Span,
+    pub pragmas: Vec<Span>,
+}
+
+/// A `USING` directive: the namespaces it names, each one name or a
+/// dotted path as written.
+#[derive(Clone, PartialEq, Debug)]
+pub struct UsingDecl {
+    pub names: Vec<Ident>,
+    pub span: Span,
 }
 
 // ---------------------------------------------------------------------------

@@ -73,7 +73,27 @@ impl Dumper<'_> {
             Item::Pou(p) => self.pou(p),
             Item::Configuration(c) => self.configuration(c),
             Item::GlobalVars(b) => self.var_block(b),
+            Item::Namespace(ns) => {
+                self.pragmas(&ns.pragmas);
+                let internal = if ns.internal { " INTERNAL" } else { "" };
+                let text = format!("Namespace{internal} {}", self.name(ns.name));
+                self.line(ns.span, &text);
+                self.indent += 1;
+            }
+            Item::EndNamespace(span) => {
+                self.indent = self.indent.saturating_sub(1);
+                self.line(*span, "EndNamespace");
+            }
+            Item::Using(u) => {
+                let text = format!("Using {}", self.names_text(&u.names));
+                self.line(u.span, &text);
+            }
         }
+    }
+
+    fn names_text(&self, names: &[Ident]) -> String {
+        let names: Vec<&str> = names.iter().map(|n| self.name(*n)).collect();
+        names.join(", ")
     }
 
     fn pragmas(&mut self, pragmas: &[Span]) {
@@ -113,12 +133,19 @@ impl Dumper<'_> {
     fn pou(&mut self, p: &Pou) {
         self.pragmas(&p.pragmas);
         let mut text = p.keyword().to_string();
-        for (on, word) in [(p.is_abstract, " ABSTRACT"), (p.is_final, " FINAL")] {
+        for (on, word) in [
+            (p.is_abstract, " ABSTRACT"),
+            (p.is_final, " FINAL"),
+            (p.internal, " INTERNAL"),
+        ] {
             if on {
                 text.push_str(word);
             }
         }
         let _ = write!(text, " {}", self.name(p.name));
+        if !p.usings.is_empty() {
+            let _ = write!(text, " USING {}", self.names_text(&p.usings));
+        }
         if let Some(b) = &p.extends {
             let _ = write!(text, " EXTENDS {}", self.name(*b));
         }

@@ -89,7 +89,27 @@ impl Printer<'_> {
             Item::Pou(pou) => self.pou(pou),
             Item::Configuration(c) => self.configuration(c),
             Item::GlobalVars(b) => self.var_block(b),
+            Item::Namespace(ns) => {
+                self.pragmas(&ns.pragmas);
+                let internal = if ns.internal { " INTERNAL" } else { "" };
+                self.line(&format!("NAMESPACE{internal} {}", self.name(ns.name)));
+                self.indent += 1;
+            }
+            Item::EndNamespace(_) => {
+                self.indent = self.indent.saturating_sub(1);
+                self.line("END_NAMESPACE");
+            }
+            Item::Using(u) => {
+                let line = self.using_line(&u.names);
+                self.line(&line);
+            }
         }
+    }
+
+    /// `USING A, B.C;`
+    fn using_line(&self, names: &[Ident]) -> String {
+        let names: Vec<&str> = names.iter().map(|n| self.name(*n)).collect();
+        format!("USING {};", names.join(", "))
     }
 
     /// `head TYPE [suffix] [:= init];`, with STRUCT types spread over lines.
@@ -135,7 +155,11 @@ impl Printer<'_> {
     fn pou(&mut self, pou: &Pou) {
         self.pragmas(&pou.pragmas);
         let mut head = pou.keyword().to_string();
-        for (on, word) in [(pou.is_abstract, " ABSTRACT"), (pou.is_final, " FINAL")] {
+        for (on, word) in [
+            (pou.is_abstract, " ABSTRACT"),
+            (pou.is_final, " FINAL"),
+            (pou.internal, " INTERNAL"),
+        ] {
             if on {
                 head.push_str(word);
             }
@@ -162,6 +186,10 @@ impl Printer<'_> {
         }
         self.line(&head);
         self.nested(|p| {
+            if !pou.usings.is_empty() {
+                let line = p.using_line(&pou.usings);
+                p.line(&line);
+            }
             let shown = pou.var_blocks.len() - pou.sfc.as_ref().map_or(0, |s| s.generated_blocks);
             for b in &pou.var_blocks[..shown] {
                 p.var_block(b);

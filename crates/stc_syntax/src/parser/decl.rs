@@ -126,7 +126,7 @@ impl Parser<'_> {
         pragmas: Vec<Span>,
     ) -> Option<Pou> {
         let opener = self.bump().span();
-        let (mut is_abstract, mut is_final) = (false, false);
+        let (mut is_abstract, mut is_final, mut internal) = (false, false, false);
         for modifier in [
             "ABSTRACT",
             "FINAL",
@@ -140,6 +140,9 @@ impl Parser<'_> {
                 match modifier {
                     "ABSTRACT" if kind == PouKind::FunctionBlock => is_abstract = true,
                     "FINAL" if kind == PouKind::FunctionBlock => is_final = true,
+                    // A namespace's element is PUBLIC unless INTERNAL.
+                    "INTERNAL" => internal = true,
+                    "PUBLIC" => {}
                     _ => self.unsupported(span, "access modifiers of a POU are"),
                 }
             }
@@ -148,6 +151,8 @@ impl Parser<'_> {
             self.skip_to_item();
             return None;
         };
+        let mut usings = Vec::new();
+        self.usings_into(&mut usings);
         self.pou_partial = false;
         self.pou_skipped.clear();
         self.late_methods.clear();
@@ -172,17 +177,13 @@ impl Parser<'_> {
                         self.report(d);
                     }
                     loop {
-                        let mut last = self.tok();
-                        if last.kind != TokenKind::Ident {
+                        if self.kind() != TokenKind::Ident {
                             self.expected("a type name");
                             break;
                         }
-                        self.bump();
-                        while self.at(TokenKind::Dot) && self.nth_kind(1) == TokenKind::Ident {
-                            self.bump();
-                            last = self.bump();
-                        }
-                        let id = self.intern_token(last);
+                        let Some(id) = self.qualified_name("a type name") else {
+                            break;
+                        };
                         if word == "EXTENDS" && !interface {
                             extends = Some(id);
                             break;
@@ -200,6 +201,7 @@ impl Parser<'_> {
         } else {
             None
         };
+        self.usings_into(&mut usings);
         let mut var_blocks = Vec::new();
         self.var_blocks_into(&mut var_blocks);
         let mut methods = Vec::new();
@@ -268,6 +270,8 @@ impl Parser<'_> {
                 methods,
                 is_abstract,
                 is_final,
+                internal,
+                usings,
             });
         }
         if self.at_sfc_body() {
@@ -367,6 +371,8 @@ impl Parser<'_> {
             methods,
             is_abstract,
             is_final,
+            internal,
+            usings,
         })
     }
 
@@ -1123,11 +1129,10 @@ impl Parser<'_> {
                 }
                 TypeSpecKind::Error
             }
-            TokenKind::Ident => {
-                self.bump();
-                let name = self.intern_token(t);
-                TypeSpecKind::Named(name)
-            }
+            TokenKind::Ident => match self.qualified_name("a type") {
+                Some(name) => TypeSpecKind::Named(name),
+                None => TypeSpecKind::Error,
+            },
             TokenKind::LParen => self.enum_spec(),
             TokenKind::Kw(Keyword::Array) => self.array_spec(),
             TokenKind::Kw(Keyword::Struct) => {
@@ -1662,7 +1667,7 @@ impl Parser<'_> {
             self.skip_decl();
             return None;
         }
-        let Some(type_name) = self.name("a program type name") else {
+        let Some(type_name) = self.qualified_name("a program type name") else {
             self.skip_decl();
             return None;
         };
@@ -1744,5 +1749,7 @@ fn method_pou(
         methods: Vec::new(),
         is_abstract: false,
         is_final: false,
+        internal: false,
+        usings: Vec::new(),
     }
 }

@@ -434,6 +434,14 @@ impl Parser<'_> {
                 let depth = self.depth_of(inner);
                 self.mk(ExprKind::Paren(inner), t.span().to(end), depth)
             }
+            // `Drives.Direction#FORWARD`: a typed literal whose type is
+            // named with its namespace.
+            TokenKind::Ident if self.qualified_hash_ahead() => {
+                match self.qualified_name("a type name") {
+                    Some(prefix) => self.typed_literal(TypePrefix::Named(prefix)),
+                    None => self.error_expr(t.span()),
+                }
+            }
             TokenKind::Ident if self.nth_kind(1) == TokenKind::Hash => {
                 self.bump();
                 let prefix = self.intern_token(t);
@@ -490,6 +498,15 @@ impl Parser<'_> {
                 self.error_expr(t.span())
             }
         }
+    }
+
+    /// At `A.B#`, `A.B.C#`: a dotted type name before a typed literal's `#`.
+    fn qualified_hash_ahead(&self) -> bool {
+        let mut i = 1;
+        while self.nth_kind(i) == TokenKind::Dot && self.nth_kind(i + 1) == TokenKind::Ident {
+            i += 2;
+        }
+        i > 1 && self.nth_kind(i) == TokenKind::Hash
     }
 
     /// After `INT#`, `MyEnum#`: the value.

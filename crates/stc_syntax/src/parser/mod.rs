@@ -23,7 +23,7 @@ mod stmt;
 
 use stc_diagnostics::{Code, Diagnostic, Span};
 
-use crate::ast::{Ast, ExprId, ExprKind, Ident, Item, Method, PouKind};
+use crate::ast::{Ast, ExprId, ExprKind, Ident, Item, Method, NamespaceDecl, PouKind, UsingDecl};
 use crate::intern::Interner;
 use crate::lexer::{lex, Trivia, TriviaKind};
 use crate::token::{ElemType, Keyword, Token, TokenKind};
@@ -126,6 +126,7 @@ pub fn parse_file_in(
         in_chart_il: false,
         reserved_names: Vec::new(),
         unit: UnitPart::Outside,
+        namespaces: Vec::new(),
     };
     p.file();
     // A `__` operator reported as not supported is not also an invalid
@@ -265,6 +266,9 @@ pub(crate) struct Parser<'a> {
     /// mistake gets one diagnostic, not one more per use.
     reserved_names: Vec<TokenKind>,
     unit: UnitPart,
+    /// The `NAMESPACE` words of the namespaces open at this point of the
+    /// file (innermost last).
+    namespaces: Vec<Span>,
 }
 
 /// Reserved words that open or close a section, which are never taken for a
@@ -675,9 +679,11 @@ impl<'a> Parser<'a> {
 
     /// Skips to the start of the next top-level declaration.
     fn skip_to_item(&mut self) {
-        while !self.at(TokenKind::Eof)
-            && !is_item_start(self.kind())
-            && !self.at_kw(Keyword::VarGlobal)
+        while !(self.at(TokenKind::Eof)
+            || is_item_start(self.kind())
+            || self.at_kw(Keyword::VarGlobal)
+            || self.at_word("END_NAMESPACE")
+            || (self.at_word("NAMESPACE") && self.nth_kind(1) == TokenKind::Ident))
         {
             self.bump();
         }
@@ -744,6 +750,98 @@ impl<'a> Parser<'a> {
                 self.bump();
             }
         }
+        // A namespace left open ends with its file (after the error), so
+        // the next file's items are not read as inside it.
+        while let Some(open) = self.namespaces.pop() {
+            let end = self.tok().span();
+            if !self.aborted {
+                let d = Diagnostic::new(
+                    Code::E0020,
+                    end,
+                    "expected `END_NAMESPACE`, found end of file",
+                )
+                .with_label("expected `END_NAMESPACE`")
+                .with_secondary(open, "this namespace is not closed");
+                self.report(d);
+            }
+            self.ast
+                .items
+                .push(Item::EndNamespace(Span::new(end.lo, end.lo)));
+        }
+    }
+
+    /// A name or a dotted path (`Drives.Motor`, a namespace's element) as
+    /// one identifier: the parts as written, joined by dots.
+    pub(crate) fn qualified_name(&mut self, what: &str) -> Option<Ident> {
+        let first_tok = self.tok();
+        let first = self.name(what)?;
+        if !(self.at(TokenKind::Dot) && self.nth_kind(1) == TokenKind::Ident) {
+            return Some(first);
+        }
+        let mut text = self.text_of(first_tok).to_string();
+        let mut span = first.span;
+        while self.at(TokenKind::Dot) && self.nth_kind(1) == TokenKind::Ident {
+            self.bump();
+            let t = self.bump();
+            text.push('.');
+            text.push_str(self.text_of(t));
+            span = span.to(t.span());
+        }
+        Some(Ident {
+            sym: self.interner.intern(&text),
+            span,
+        })
+    }
+
+    /// `USING A, B.C;` directives: their namespaces are added to `out`.
+    pub(crate) fn usings_into(&mut self, out: &mut Vec<Ident>) {
+        while self.at_word("USING") && self.nth_kind(1) == TokenKind::Ident {
+            self.bump();
+            while let Some(n) = self.qualified_name("a namespace name") {
+                out.push(n);
+                if !self.eat(TokenKind::Comma) {
+                    break;
+                }
+            }
+            self.expect(TokenKind::Semi);
+        }
+    }
+
+    /// NAMESPACE, END_NAMESPACE and USING between items.
+    fn namespace_item(&mut self, pragmas: Vec<Span>) -> Option<Item> {
+        if self.at_word("NAMESPACE") && self.nth_kind(1) == TokenKind::Ident {
+            let start = self.bump().span();
+            let internal = self.at_word("INTERNAL") && self.nth_kind(1) == TokenKind::Ident;
+            if internal {
+                self.bump();
+            }
+            let name = self.qualified_name("a namespace name")?;
+            self.namespaces.push(start);
+            return Some(Item::Namespace(NamespaceDecl {
+                name,
+                internal,
+                span: start.to(name.span),
+                pragmas,
+            }));
+        }
+        if self.at_word("END_NAMESPACE") {
+            let span = self.bump().span();
+            self.eat(TokenKind::Semi);
+            if self.namespaces.pop().is_none() {
+                let d = Diagnostic::new(Code::E0020, span, "`END_NAMESPACE` without a `NAMESPACE`")
+                    .with_label("no namespace is open here");
+                self.report(d);
+                return None;
+            }
+            return Some(Item::EndNamespace(span));
+        }
+        let start = self.tok().span();
+        let mut names = Vec::new();
+        self.usings_into(&mut names);
+        Some(Item::Using(UsingDecl {
+            names,
+            span: start.to(self.prev().span()),
+        }))
     }
 
     fn item(&mut self) -> Option<Item> {
@@ -811,6 +909,13 @@ impl<'a> Parser<'a> {
                 self.pou_of(crate::ast::PouKind::FunctionBlock, Some(class), pragmas)
                     .map(Item::Pou)
             }
+            TokenKind::Ident
+                if (self.at_word("NAMESPACE") && self.nth_kind(1) == TokenKind::Ident)
+                    || self.at_word("END_NAMESPACE")
+                    || (self.at_word("USING") && self.nth_kind(1) == TokenKind::Ident) =>
+            {
+                self.namespace_item(pragmas)
+            }
             TokenKind::Ident if self.at_unsupported_item() => None,
             _ => {
                 self.expected(
@@ -823,23 +928,9 @@ impl<'a> Parser<'a> {
         }
     }
 
-    /// INTERFACE, NAMESPACE, a stand-alone METHOD or ACTION: reported once and
-    /// skipped whole.
+    /// A stand-alone METHOD, PROPERTY or ACTION: reported once and skipped
+    /// whole.
     fn at_unsupported_item(&mut self) -> bool {
-        // A NAMESPACE is reported once and its declarations are read as if
-        // outside it (they are ordinary POUs and types); its end is skipped.
-        if self.at_word("NAMESPACE") && self.nth_kind(1) == TokenKind::Ident {
-            let span = self.tok().span();
-            self.unsupported(span, "namespaces are");
-            self.bump();
-            self.bump();
-            return true;
-        }
-        if self.at_word("END_NAMESPACE") {
-            self.bump();
-            self.eat(TokenKind::Semi);
-            return true;
-        }
         for (word, end, what) in [
             ("ACTIONS", "END_ACTIONS", "ACTIONS blocks are"),
             ("METHOD", "END_METHOD", "methods are"),

@@ -1175,6 +1175,23 @@ void stc_split_dt(int64_t dt, int64_t out[7], uint32_t site)
     out[6] = (ns / NS_PER_MS) % 1000;
 }
 
+int64_t stc_split_field(uint32_t kind, int64_t v, int64_t k)
+{
+    int64_t out[7] = {0, 0, 0, 0, 0, 0, 0};
+    int64_t field = 0;
+    if (kind == 0U) {
+        stc_split_date(v, out, 0U);
+    } else if (kind == 1U) {
+        stc_split_tod(v, out);
+    } else {
+        stc_split_dt(v, out, 0U);
+    }
+    if ((k >= 0) && (k < 7)) {
+        field = out[k];
+    }
+    return field;
+}
+
 /* ======================================================================
  * Shortest round-trip digits of a REAL or LREAL (the digits Rust's `{:?}`
  * prints: the shortest decimal in the rounding interval of the value,

@@ -1470,6 +1470,8 @@ uint8_t stc_day_of_week(int64_t date);
 void stc_split_date(int64_t date, int64_t out[3], uint32_t site);
 void stc_split_tod(int64_t tod, int64_t out[4]);
 void stc_split_dt(int64_t dt, int64_t out[7], uint32_t site);
+/* Field k of SPLIT_DATE (kind 0), SPLIT_TOD (1) or SPLIT_DT (2). */
+int64_t stc_split_field(uint32_t kind, int64_t v, int64_t k);
 
 /* ---- for the real-time harness ----------------------------------------- */
 

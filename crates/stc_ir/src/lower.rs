@@ -3,6 +3,7 @@
 mod il;
 mod oop;
 mod pointers;
+mod split;
 
 use stc_diagnostics::{SourceMap, Span};
 use stc_sema::idx::IdVec;
@@ -803,6 +804,13 @@ impl<'a> Lowerer<'a> {
                     // (Its value, if any, is not used.)
                     Err(_) => None,
                 }
+            }
+            CallTarget::Std {
+                intrinsic: f @ (Intrinsic::SplitDate | Intrinsic::SplitTod | Intrinsic::SplitDt),
+                ..
+            } => {
+                self.split_call(e, info, *f);
+                None
             }
             _ => Some(StmtKind::Eval(self.expr(e))),
         }

@@ -157,6 +157,9 @@ impl<'a> Sema<'a> {
                 if let Some(f) = stc_values::lookup(&key) {
                     return self.std_call(e, &f, args, expected, scope, span);
                 }
+                if let Some(split) = stc_values::split_lookup(&key) {
+                    return self.split_call(e, &shown, split, args, scope, span, as_stmt);
+                }
                 if matches!(key.as_str(), "LOWER_BOUND" | "UPPER_BOUND") {
                     let upper = key == "UPPER_BOUND";
                     return self.bound_call(e, upper, &shown, args, scope, span);

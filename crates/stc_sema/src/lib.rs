@@ -29,6 +29,7 @@ mod pointers;
 pub mod prelude;
 mod properties;
 mod sfc;
+mod split;
 mod stmt;
 #[cfg(test)]
 mod tests;

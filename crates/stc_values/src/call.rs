@@ -26,7 +26,9 @@ const SECS_PER_DAY: i128 = 86_400;
 /// the `from`/`to` carried by conversion intrinsics are not consulted.
 ///
 /// SPLIT_DATE, SPLIT_TOD and SPLIT_DT have outputs instead of a result:
-/// use [`split`] for them (here they answer `Err(Fault::Conversion)`).
+/// [`split`] gives them all; here, called with the value and a field's
+/// index `k` (a LINT), they give field `k` (as a LINT), which is how a
+/// program computes them (`stc_ir`'s lowering of a SPLIT call).
 pub fn call(
     f: Intrinsic,
     arg_types: &[ElemType],
@@ -207,7 +209,16 @@ pub fn call(
             let dow = (days.rem_euclid(7) + 4) % 7;
             Ok(wrapped(result, Some(dow), dow))
         }
-        I::SplitDate | I::SplitTod | I::SplitDt => misuse(),
+        // One field of [`split`]: the value and the field's index.
+        I::SplitDate | I::SplitTod | I::SplitDt => match args {
+            [v, k] => {
+                let fields = split(f, t0, v)?;
+                let k = usize::try_from(int(k)?).map_err(|_| Fault::Conversion)?;
+                let field = *fields.get(k).ok_or(Fault::Conversion)?;
+                exact(Value::Int(field))
+            }
+            _ => misuse(),
+        },
 
         // Conversions.
         I::Convert { .. } => convert(t0, result, a0).map(Outcome::exact),

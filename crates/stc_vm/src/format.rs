@@ -371,12 +371,21 @@ fn intrinsic_name(f: &stc_values::Intrinsic) -> (&'static str, ElemType, Option<
                 .into_iter()
                 .find(|n| stc_values::lookup(n).is_some_and(|s| same(&s.intrinsic)))
         })
+        .or_else(|| {
+            // The SPLIT functions are not in the signature table.
+            ["SPLIT_DATE", "SPLIT_TOD", "SPLIT_DT"]
+                .into_iter()
+                .find(|n| stc_values::split_lookup(n).is_some_and(|s| same(&s.0)))
+        })
         .unwrap_or("");
     (name, a, b)
 }
 
 fn intrinsic_from(name: &str, a: ElemType, b: Option<ElemType>) -> Option<stc_values::Intrinsic> {
     use stc_values::Intrinsic as I;
+    if let Some((f, ..)) = stc_values::split_lookup(name) {
+        return Some(f);
+    }
     Some(match stc_values::lookup(name)?.intrinsic {
         I::Convert { .. } => I::Convert { from: a, to: b? },
         I::BcdToInt { .. } => I::BcdToInt { from: a, to: b? },

@@ -76,10 +76,23 @@ pub(crate) fn intrinsic(e: &mut dyn Emit, f: Intrinsic, args: &[Val], dst: &Val,
             }
             _ => misuse(e, dst),
         },
-        // SPLIT_* have outputs, which an operation with one destination
-        // cannot express (stc_values::call answers them with a conversion
-        // failure too); the runtime has stc_split_date/tod/dt for them.
-        I::SplitDate | I::SplitTod | I::SplitDt => misuse(e, dst),
+        // One field of SPLIT_*: the value and the field's index, a LINT
+        // (the lowering's form of a SPLIT call, stc_ir::lower::split).
+        I::SplitDate | I::SplitTod | I::SplitDt => match args {
+            [v, k] if v.rep() == Some(Rep::I64) && dst.rep() == Some(Rep::I64) => {
+                let kind = match f {
+                    I::SplitDate => 0,
+                    I::SplitTod => 1,
+                    _ => 2,
+                };
+                set(
+                    e,
+                    dst,
+                    &format!("stc_split_field({kind}U, {}, {})", v.x, sat_i64(k)),
+                )
+            }
+            _ => misuse(e, dst),
+        },
         I::Convert { .. } => match args {
             [a] => conv::convert(e, a, dst, cap),
             _ => misuse(e, dst),

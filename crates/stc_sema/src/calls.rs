@@ -59,6 +59,28 @@ impl<'a> Sema<'a> {
         None
     }
 
+    /// Reports a call that mixes formal (`name := value`) and positional
+    /// arguments (E0404), checking its arguments alone; whether it did.
+    pub(crate) fn mixed_args(&mut self, args: &[Arg], scope: Scope) -> bool {
+        let formal = |a: &Arg| !matches!(a.kind, ArgKind::Positional(_));
+        let Some(first) = args.first() else {
+            return false;
+        };
+        let Some(odd) = args.iter().find(|a| formal(a) != formal(first)) else {
+            return false;
+        };
+        self.emit(
+            Diagnostic::new(
+                Code::E0404,
+                odd.span,
+                "formal (`name := value`) and positional arguments cannot be mixed in one call",
+            )
+            .with_help("name every argument, or none"),
+        );
+        self.loose_args(args, scope);
+        true
+    }
+
     pub(crate) fn loose_args(&mut self, args: &[Arg], scope: Scope) {
         for a in args {
             self.check_expr(arg_value(a), Some(TypeId::ERROR), scope);
@@ -476,16 +498,8 @@ impl<'a> Sema<'a> {
         let callee_name = self.sym_name(self.pous[q.0 as usize].name);
         let mut bound: Vec<BoundArg> = Vec::new();
         let (mut en, mut eno) = (None, None);
-        let formal = |a: &Arg| !matches!(a.kind, ArgKind::Positional(_));
-        if let Some(first) = args.first() {
-            if let Some(odd) = args.iter().find(|a| formal(a) != formal(first)) {
-                self.emit(
-                    Diagnostic::new(Code::E0404, odd.span, "formal (`name := value`) and positional arguments cannot be mixed in one call")
-                        .with_help("name every argument, or none"),
-                );
-                self.loose_args(args, scope);
-                return (bound, en, eno);
-            }
+        if self.mixed_args(args, scope) {
+            return (bound, en, eno);
         }
         let positional: Vec<crate::VarId> = self.pous[q.0 as usize].positional_params();
         let (en_var, eno_var) = (self.pous[q.0 as usize].en, self.pous[q.0 as usize].eno);
@@ -737,17 +751,8 @@ impl<'a> Sema<'a> {
         span: Span,
     ) -> TypeId {
         // Bind arguments to positions.
-        let formal = |a: &Arg| !matches!(a.kind, ArgKind::Positional(_));
-        if let Some(first) = args.first() {
-            if let Some(odd) = args.iter().find(|a| formal(a) != formal(first)) {
-                self.emit(Diagnostic::new(
-                    Code::E0404,
-                    odd.span,
-                    "formal (`name := value`) and positional arguments cannot be mixed in one call",
-                ));
-                self.loose_args(args, scope);
-                return TypeId::ERROR;
-            }
+        if self.mixed_args(args, scope) {
+            return TypeId::ERROR;
         }
         let mut slots: Vec<Option<ExprId>> = Vec::new();
         // EN and ENO, which every standard function has too (ed2 2.5.1.2).

@@ -39,17 +39,8 @@ impl<'a> Sema<'a> {
     ) -> TypeId {
         let (f, in_elem, outs) = split;
         let in_ty = self.types.elem(in_elem);
-        let formal = |a: &Arg| !matches!(a.kind, ArgKind::Positional(_));
-        if let Some(first) = args.first() {
-            if let Some(odd) = args.iter().find(|a| formal(a) != formal(first)) {
-                self.emit(Diagnostic::new(
-                    Code::E0404,
-                    odd.span,
-                    "formal (`name := value`) and positional arguments cannot be mixed in one call",
-                ));
-                self.loose_args(args, scope);
-                return TypeId::ERROR;
-            }
+        if self.mixed_args(args, scope) {
+            return TypeId::ERROR;
         }
         let params = || {
             std::iter::once("IN")

@@ -255,7 +255,8 @@ REAL, a signed to an unsigned type), or between a bit string and a number
 the widening conversions of the 3rd edition are implicit (SINT to INT, INT to
 REAL, REAL to LREAL, BYTE to WORD, ...); with `--std iec2` no conversion is
 implicit. The message says which case it is; use the explicit conversion
-function named in the help.";
+function named in the help. (Between integers and bit strings CODESYS
+converts implicitly; stc accepts that with W0118 unless `--std iec2`.)";
     E0303 Error "literal out of range"
 "The literal does not fit in the type it takes from its context, for example
 `300` assigned to a SINT (-128..127) or `-1` to a UINT.";
@@ -803,6 +804,16 @@ qualifier, and says so with this warning: compiled with its library's
 sources, the code means the same. Declare the namespace (`NAMESPACE
 Tc2_Standard ... END_NAMESPACE`) or drop the qualifier; `--std iec2`
 refuses the form.";
+    W0118 Warning "implicit conversion between integers and bit strings"
+"The 3rd edition converts implicitly only where no value can be lost
+(INT to DINT, BYTE to WORD) and never between bit strings and numbers.
+CODESYS and TwinCAT also convert implicitly from any integer or bit string
+to any other (INT to UINT, DINT to INT, DWORD to UDINT, BYTE to INT), and
+libraries such as OSCAT rely on it. stc accepts it with this warning and
+converts as the explicit conversion does (`INT_TO_UINT`): the value's
+low-order bits are kept, so -1 becomes 65535 and 70000 in an INT becomes
+4464. Write the conversion (`INT_TO_UINT(x)`) to say it is meant; `--std
+iec2` refuses the form (E0302).";
     W1201 Warning "step can never become active"
 "No sequence of transitions leads from the initial step to this step: it
 is never active and its actions never run by it. A step is reached when a

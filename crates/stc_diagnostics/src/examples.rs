@@ -964,22 +964,22 @@ END_PROGRAM
         Code::E0302,
         r"PROGRAM Tank
 VAR_INPUT
-    raw_level : DINT;
+    raw_level : LREAL;
 END_VAR
 VAR_OUTPUT
-    level : INT;
+    level : REAL;
 END_VAR
     level := raw_level;   // E0302
 END_PROGRAM
 ",
         r"PROGRAM Tank
 VAR_INPUT
-    raw_level : DINT;
+    raw_level : LREAL;
 END_VAR
 VAR_OUTPUT
-    level : INT;
+    level : REAL;
 END_VAR
-    level := DINT_TO_INT(raw_level);
+    level := LREAL_TO_REAL(raw_level);
 END_PROGRAM
 ",
     ),
@@ -4071,6 +4071,25 @@ END_PROGRAM
         t : TON;
     END_VAR
     t(IN := TRUE, PT := T#1s);
+END_PROGRAM
+",
+    ),
+    (
+        Code::W0118,
+        r"PROGRAM Main
+    VAR
+        count : INT := -1;
+        size : UINT;
+    END_VAR
+    size := count; // W0118
+END_PROGRAM
+",
+        r"PROGRAM Main
+    VAR
+        count : INT := -1;
+        size : UINT;
+    END_VAR
+    size := INT_TO_UINT(count);
 END_PROGRAM
 ",
     ),

@@ -1015,9 +1015,9 @@ impl<'a> Sema<'a> {
             .globals
             .iter()
             .position(|g| g.var.name == id.sym && g.owner == GlobalOwner::TopLevel)?;
-        if self.implicit_globals.insert((p, id.sym)) {
+        let gspan = self.globals[g].var.span;
+        if !self.in_prelude(gspan) && self.implicit_globals.insert((p, id.sym)) {
             let shown = self.spelled(id.sym, id.span);
-            let gspan = self.globals[g].var.span;
             let pou = self.sym_name(self.pous[p.0 as usize].name);
             let constant = if self.globals[g].var.constant {
                 " CONSTANT"

@@ -548,7 +548,14 @@ impl Sema<'_> {
         } else {
             let (p, pt, n, nt) = if lp { (l, lt, r, rt) } else { (r, rt, l, lt) };
             let moves = op == BinaryOp::Add || op == BinaryOp::Sub && lp;
-            if void(self, pt) && moves && self.types.is_integer(nt) {
+            // The offset: an integer, or a bit string read as its unsigned
+            // value (CODESYS adds DWORDs to pointers).
+            let offset = self.types.is_integer(nt)
+                || self
+                    .types
+                    .numeric(nt)
+                    .is_some_and(|e| e != ElemType::Bool && stc_values::is_bit_string(e));
+            if void(self, pt) && moves && offset {
                 // `ADR(x) + n`: still an address of x's object.
                 return pt;
             }
@@ -571,7 +578,7 @@ impl Sema<'_> {
                 return bool_ty;
             }
             let moves = op == BinaryOp::Add || op == BinaryOp::Sub && lp;
-            if moves && self.types.is_integer(nt) {
+            if moves && offset {
                 return pt;
             }
         }

@@ -40,10 +40,15 @@ pub fn source() -> String {
 /// replaces without a word ([`WEAK`]).
 const VENDOR: &str = r#"
 TYPE T_MaxString : STRING(255); END_TYPE
+TYPE PVOID : POINTER TO BYTE; END_TYPE
+VAR_GLOBAL CONSTANT MAX_STRING_LENGTH : UDINT := 255; END_VAR
 "#;
 
-/// The keys (upper case) of the prelude's weak declarations.
-pub const WEAK: &[&str] = &["T_MAXSTRING"];
+/// The keys (upper case) of the prelude's weak declarations. (TwinCAT's
+/// PVOID is an address-sized integer; here it is a checked pointer to the
+/// bytes it points at, docs/oop.md "Pointers". Its globals are read
+/// without VAR_EXTERNAL and without W0114, as a library's are.)
+pub const WEAK: &[&str] = &["T_MAXSTRING", "PVOID", "MAX_STRING_LENGTH"];
 
 const FIXED: &str = r#"
 FUNCTION_BLOCK SR

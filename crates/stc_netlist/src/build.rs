@@ -22,6 +22,7 @@ enum Key {
     Convert,
     Call(Intrinsic),
     Clock,
+    Part(bool, u32, u32),
 }
 
 /// A constant's identity (reals by their bits, so NaN is one constant).
@@ -51,6 +52,8 @@ fn key_of(k: &Kind) -> Option<Key> {
         Kind::Convert => Key::Convert,
         Kind::Call(f) => Key::Call(*f),
         Kind::Clock => Key::Clock,
+        Kind::PartGet { bits, pos } => Key::Part(false, *bits, *pos),
+        Kind::PartSet { bits, pos } => Key::Part(true, *bits, *pos),
         _ => return None,
     })
 }

@@ -79,6 +79,12 @@ pub enum Kind {
     Convert,
     /// A standard function of `stc_values` on A1..An.
     Call(Intrinsic),
+    /// A part of a bit string (`x.3`, `w.%B1`): X1 is the `bits` bits of A1
+    /// from bit `pos · bits` up (a BOOL when `bits` is 1).
+    PartGet { bits: u32, pos: u32 },
+    /// The bit string A1 with that part replaced by A2 (the assignment
+    /// `x.3 := b`, `w.%B1 := v`).
+    PartSet { bits: u32, pos: u32 },
 }
 
 impl Kind {
@@ -180,6 +186,26 @@ pub fn eval(
             _ => (default_of(out_ty), Some(FaultKind::InvalidCode)),
         },
         Kind::Call(f) => lift(stc_values::call(*f, in_tys, ins, out_ty)),
+        Kind::PartGet { bits, pos } => match ins {
+            [w] => match w.as_int() {
+                Some(w) => (part_get(w, *bits, *pos, out_ty), None),
+                None => (default_of(out_ty), Some(FaultKind::InvalidCode)),
+            },
+            _ => (default_of(out_ty), Some(FaultKind::InvalidCode)),
+        },
+        Kind::PartSet { bits, pos } => match ins {
+            [w, v] => {
+                let v = match v {
+                    Value::Bool(b) => Some(i128::from(*b)),
+                    v => v.as_int(),
+                };
+                match (w.as_int(), v) {
+                    (Some(w), Some(v)) => (part_set(w, v, *bits, *pos, out_ty), None),
+                    _ => (default_of(out_ty), Some(FaultKind::InvalidCode)),
+                }
+            }
+            _ => (default_of(out_ty), Some(FaultKind::InvalidCode)),
+        },
         Kind::Input { .. }
         | Kind::Clock
         | Kind::Const(_)
@@ -187,6 +213,34 @@ pub fn eval(
         | Kind::Output { .. }
         | Kind::Fault { .. } => (default_of(out_ty), Some(FaultKind::InvalidCode)),
     }
+}
+
+/// The mask of a part of `bits` bits (at most 64).
+fn part_mask(bits: u32) -> u128 {
+    if bits >= 64 {
+        u128::from(u64::MAX)
+    } else {
+        (1u128 << bits) - 1
+    }
+}
+
+/// Bits `pos · bits ..` of the word `w`, as a value of type `t`.
+fn part_get(w: i128, bits: u32, pos: u32, t: ElemType) -> Value {
+    let shift = bits.saturating_mul(pos).min(127);
+    let raw = ((w as u128) >> shift) & part_mask(bits);
+    if t == ElemType::Bool {
+        Value::Bool(raw != 0)
+    } else {
+        Value::Int(stc_values::wrap(t, raw as i128))
+    }
+}
+
+/// The word `w` (of type `t`) with bits `pos · bits ..` replaced by `v`.
+fn part_set(w: i128, v: i128, bits: u32, pos: u32, t: ElemType) -> Value {
+    let shift = bits.saturating_mul(pos).min(127);
+    let mask = part_mask(bits) << shift;
+    let raw = ((w as u128) & !mask) | (((v as u128) << shift) & mask);
+    Value::Int(stc_values::wrap(t, raw as i128))
 }
 
 /// Whether a component may fault on some input values (then it has an F1

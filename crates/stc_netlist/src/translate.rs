@@ -109,8 +109,74 @@ pub fn translate(m: &Module, program: PouId) -> Result<Circuit, Box<Refusal>> {
     let pou = m.pou(program);
     let name = m.spelled(pou.name, pou.name_span).to_string();
     let mut t = Tr::new(m, name.clone());
-    t.program(program, &name)?;
+    t.program(program, &name, None)?;
+    t.commit();
     Ok(t.b.finish())
+}
+
+/// The name of the enable input of a program instance of a configuration
+/// (`Fast$EN`): TRUE in the step that runs that instance. (A `$` name is
+/// no run-time path, as a hidden variable's.)
+pub fn enable_name(instance: &str) -> String {
+    format!("{instance}$EN")
+}
+
+/// Translates the configuration `config` (an index into `m.configs`): every
+/// program instance of every resource, in declaration order, each under its
+/// enable input ([`enable_name`]); the configuration's globals (its
+/// located ones are its I/O modules) and the instances' connections
+/// (docs/netlist.md, "Configurations").
+pub fn translate_config(m: &Module, config: usize) -> Result<Circuit, Box<Refusal>> {
+    let Some(conf) = m.configs.get(config) else {
+        return Err(Box::new(Refusal {
+            code: Code::E1105,
+            message: format!("no configuration number {config}"),
+            pou_span: Span::new(0, 0),
+            line: 0,
+            col: 0,
+        }));
+    };
+    let name = m.spelled(conf.name, conf.span).to_string();
+    let mut t = Tr::new(m, name);
+    for g in &conf.globals {
+        t.global(*g);
+    }
+    for (r, res) in conf.resources.iter().enumerate() {
+        for g in &res.globals {
+            t.global(*g);
+        }
+        for inst in &res.programs {
+            let iname = m.spelled(inst.name, inst.name_span).to_string();
+            let en = t.b.add(
+                Kind::Input {
+                    name: enable_name(&iname),
+                    init: Value::Bool(false),
+                    aliases: Vec::new(),
+                },
+                vec![],
+                Some(ElemType::Bool),
+            );
+            let run = Run {
+                enable: en,
+                ctx: (config, r),
+                inputs: &inst.inputs,
+                outputs: &inst.outputs,
+            };
+            t.program(inst.pou, &iname, Some(run))?;
+        }
+    }
+    t.commit();
+    Ok(t.b.finish())
+}
+
+/// How a program instance of a configuration runs: under its enable, with
+/// the configuration's globals and its connections.
+struct Run<'a> {
+    enable: NetId,
+    /// (configuration, resource), to bind its externals.
+    ctx: (usize, usize),
+    inputs: &'a [(VarId, stc_sema::DataRef)],
+    outputs: &'a [(VarId, stc_sema::DataRef)],
 }
 
 /// A value: a net, or the values of an aggregate's leaves.
@@ -130,8 +196,11 @@ enum Slot {
     Text,
     /// (Shared, so reading a slot does not copy its children.)
     Agg(std::rc::Rc<[SlotId]>),
-    /// A variable an instance does not hold (a frame variable or a reference).
+    /// A variable an instance does not hold (a frame variable).
     Absent,
+    /// A reference (`REF_TO`, VAR_IN_OUT, the base of a pointer): refused
+    /// when used.
+    Address,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
@@ -160,6 +229,14 @@ enum Loc {
     Dyn {
         idx: NetId,
         elems: Vec<SlotId>,
+    },
+    /// A part of the bit string at `word`: `bits` bits from `pos · bits`,
+    /// of type `ty`.
+    Part {
+        word: Box<Loc>,
+        bits: u32,
+        pos: u32,
+        ty: ElemType,
     },
 }
 
@@ -225,6 +302,9 @@ struct Tr<'m> {
     /// The statement being translated (line, column).
     at: (u32, u32),
     depth: usize,
+    /// The configuration and resource of the program instance being
+    /// translated (`None`: a PROGRAM on its own).
+    ctx: Option<(usize, usize)>,
 }
 
 impl<'m> Tr<'m> {
@@ -249,6 +329,7 @@ impl<'m> Tr<'m> {
             inst_names: FxHashMap::default(),
             at: (0, 0),
             depth: 0,
+            ctx: None,
         }
     }
 
@@ -280,7 +361,7 @@ impl<'m> Tr<'m> {
         let m = self.m;
         match m.types.kind(t) {
             // (A reference has no cells; using one is refused.)
-            TypeKind::Ref(_) | TypeKind::Ptr(_) => self.slot(Slot::Absent),
+            TypeKind::Ref(_) | TypeKind::Ptr(_) => self.slot(Slot::Address),
             TypeKind::Elem(_)
             | TypeKind::Subrange { .. }
             | TypeKind::Enum { .. }
@@ -443,7 +524,7 @@ impl<'m> Tr<'m> {
                     self.leaves(*k, out);
                 }
             }
-            Slot::Text | Slot::Absent => {}
+            Slot::Text | Slot::Absent | Slot::Address => {}
         }
     }
 
@@ -538,7 +619,7 @@ impl<'m> Tr<'m> {
             },
             Storage::Frame => Bind::Slot(self.build(var.ty, "", var.init.as_ref(), Kind2::Temp)),
             Storage::Ref if var.section == Section::External => {
-                match m.bind_global(var.name, var.ty, None) {
+                match m.bind_global(var.name, var.ty, self.ctx) {
                     Some(g) => Bind::Slot(self.global(g)),
                     None => {
                         let key = (p.0, v.0);
@@ -562,9 +643,10 @@ impl<'m> Tr<'m> {
 
     // ---- the program ------------------------------------------------------
 
-    fn program(&mut self, p: PouId, name: &str) -> R<()> {
+    fn program(&mut self, p: PouId, name: &str, run: Option<Run>) -> R<()> {
         let m = self.m;
         let pou = m.pou(p);
+        self.ctx = run.as_ref().map(|r| r.ctx);
         let mut fr = Frame {
             pou: p,
             binds: Vec::new(),
@@ -585,7 +667,11 @@ impl<'m> Tr<'m> {
                 kids.push(self.slot(Slot::Absent));
                 continue;
             }
-            let kind = if v.section == Section::Input {
+            let i = VarId(kids.len() as u32);
+            let connected = run
+                .as_ref()
+                .is_some_and(|r| r.inputs.iter().any(|(w, _)| *w == i));
+            let kind = if v.section == Section::Input && !connected {
                 Kind2::Input
             } else {
                 Kind2::Reg
@@ -632,11 +718,66 @@ impl<'m> Tr<'m> {
             let b = self.bind_var(p, VarId(i as u32), Some(inst), name);
             fr.binds.push(b);
         }
-        self.block(&mut fr, &pou.body)?;
-        let ret = std::mem::take(&mut fr.ret);
-        self.land(0, ret);
-        // Registers take the values at the end of the cycle; output modules
-        // show them.
+        let Some(run) = run else {
+            self.block(&mut fr, &pou.body)?;
+            let ret = std::mem::take(&mut fr.ret);
+            self.land(0, ret);
+            return Ok(());
+        };
+        // An instance of a configuration runs when its enable is TRUE: its
+        // connections are copied in, its body runs, its outputs are copied
+        // out; otherwise every cell keeps its value.
+        let mut body = |t: &mut Self, fr: &mut Frame| -> R<()> {
+            let start = t.journal.len();
+            for (v, src) in run.inputs {
+                let val = t.data_ref(fr, src, m.pou(p).var(*v).ty)?;
+                let Some(slot) = t.child(inst, v.0 as usize) else {
+                    return Err(t.refuse(fr, Code::E1105, "a connected input without storage"));
+                };
+                t.write_slot(fr, slot, val, None)?;
+            }
+            t.block(fr, &pou.body)?;
+            let ret = std::mem::take(&mut fr.ret);
+            t.land(start, ret);
+            for (v, sink) in run.outputs {
+                let Some(slot) = t.child(inst, v.0 as usize) else {
+                    return Err(t.refuse(fr, Code::E1105, "a connected output without storage"));
+                };
+                let val = t.read_slot(fr, slot)?;
+                let target = match sink {
+                    stc_sema::DataRef::Global(g) => t.global(*g),
+                    stc_sema::DataRef::Direct(a) => t.direct(a, m.addr_type(a), None),
+                    stc_sema::DataRef::Const(_) => continue,
+                };
+                t.write_slot(fr, target, val, None)?;
+            }
+            Ok(())
+        };
+        self.branch(&mut fr, run.enable, &mut body, &mut |_, _| Ok(()))
+    }
+
+    /// The value of a configuration's data reference (a connection's
+    /// source).
+    fn data_ref(&mut self, fr: &Frame, d: &stc_sema::DataRef, ty: TypeId) -> R<Val> {
+        match d {
+            stc_sema::DataRef::Global(g) => {
+                let s = self.global(*g);
+                self.read_slot(fr, s)
+            }
+            stc_sema::DataRef::Direct(a) => {
+                let s = self.direct(a, self.m.addr_type(a), None);
+                self.read_slot(fr, s)
+            }
+            stc_sema::DataRef::Const(v) => {
+                let t = self.elem(fr, ty)?;
+                Ok(Val::S(self.b.konst(t, v.clone())))
+            }
+        }
+    }
+
+    /// Registers take the values at the end of the cycle; output modules
+    /// show them.
+    fn commit(&mut self) {
         for c in 0..self.cells.len() {
             let v = self.env[c];
             if let CellKind::Reg(comp) = self.cells[c].kind {
@@ -658,7 +799,6 @@ impl<'m> Tr<'m> {
         for (name, v) in shown {
             self.b.add(Kind::Output { name }, vec![v], None);
         }
-        Ok(())
     }
 
     fn has_text(&self, s: SlotId) -> bool {
@@ -1200,7 +1340,11 @@ impl<'m> Tr<'m> {
                 }
             },
             Root::Deref(_) => {
-                return Err(self.refuse(fr, Code::E1105, "a dereference (`r^`)"));
+                return Err(self.refuse(
+                    fr,
+                    Code::E1105,
+                    "a dereference (`p^` of a pointer or a reference): a circuit has no memory addresses",
+                ));
             }
             Root::This => {
                 return Err(self.refuse(fr, Code::E1105, "`THIS` (a method call)"));
@@ -1213,13 +1357,12 @@ impl<'m> Tr<'m> {
                 Proj::Field(i) => self.project(fr, loc, *i as usize)?,
                 Proj::FbVar(_, v) => self.project(fr, loc, v.0 as usize)?,
                 Proj::Index(list) => self.index(fr, loc, list)?,
-                Proj::Part(..) => {
-                    return Err(self.refuse(
-                        fr,
-                        Code::E1105,
-                        "access to a part of a bit string (`x.3`, `w.%B1`): not in the component library yet",
-                    ))
-                }
+                Proj::Part(size, pos) => Loc::Part {
+                    word: Box::new(loc),
+                    bits: size.bits(),
+                    pos: *pos,
+                    ty: self.elem(fr, p.ty)?,
+                },
             };
         }
         Ok(loc)
@@ -1228,6 +1371,7 @@ impl<'m> Tr<'m> {
     fn project(&mut self, fr: &Frame, loc: Loc, i: usize) -> R<Loc> {
         let bad = || "a member without storage".to_string();
         Ok(match loc {
+            Loc::Part { .. } => return Err(self.refuse(fr, Code::E1105, bad())),
             Loc::Fixed(s) => match self.child(s, i) {
                 Some(c) => Loc::Fixed(c),
                 None => return Err(self.refuse(fr, Code::E1105, bad())),
@@ -1351,11 +1495,28 @@ impl<'m> Tr<'m> {
             Slot::Absent => {
                 Err(self.refuse(fr, Code::E1105, "a variable without storage in a circuit"))
             }
+            Slot::Address => Err(self.refuse(fr, Code::E1105, NO_ADDRESSES)),
         }
     }
 
     fn read(&mut self, fr: &Frame, loc: &Loc) -> R<Val> {
         match loc {
+            Loc::Part {
+                word,
+                bits,
+                pos,
+                ty,
+            } => {
+                let w = self.read(fr, word)?;
+                let Val::S(w) = w else {
+                    return Err(self.refuse(fr, Code::E1105, "a part of a structured value"));
+                };
+                let kind = Kind::PartGet {
+                    bits: *bits,
+                    pos: *pos,
+                };
+                Ok(Val::S(self.b.op(kind, vec![w], *ty).0))
+            }
             Loc::Fixed(s) => self.read_slot(fr, *s),
             Loc::Dyn { idx, elems } => {
                 let mut vals = Vec::with_capacity(elems.len());
@@ -1401,6 +1562,24 @@ impl<'m> Tr<'m> {
 
     fn store(&mut self, fr: &Frame, loc: &Loc, v: Val) -> R<()> {
         match loc {
+            Loc::Part {
+                word,
+                bits,
+                pos,
+                ty,
+            } => {
+                let (Val::S(w), Val::S(v)) = (self.read(fr, word)?, v) else {
+                    return Err(self.refuse(fr, Code::E1105, "a part of a structured value"));
+                };
+                let v = self.fit(v, *ty);
+                let t = self.b.ty(w);
+                let kind = Kind::PartSet {
+                    bits: *bits,
+                    pos: *pos,
+                };
+                let n = self.b.op(kind, vec![w, v], t).0;
+                self.store(fr, word, Val::S(n))
+            }
             Loc::Fixed(s) => self.write_slot(fr, *s, v, None),
             Loc::Dyn { idx, elems } => {
                 for (k, e) in elems.iter().enumerate() {
@@ -1447,6 +1626,7 @@ impl<'m> Tr<'m> {
                 Code::E1102,
                 "a STRING or WSTRING variable: a circuit has no strings",
             )),
+            (Slot::Address, _) => Err(self.refuse(fr, Code::E1105, NO_ADDRESSES)),
             _ => Err(self.refuse(
                 fr,
                 Code::E1105,
@@ -1483,6 +1663,9 @@ impl<'m> Tr<'m> {
     }
 
     fn elem(&self, fr: &Frame, t: TypeId) -> R<ElemType> {
+        if let Some(why) = self.is_address(t) {
+            return Err(self.refuse(fr, Code::E1105, why));
+        }
         match self.scalar(t) {
             Some(ElemType::String | ElemType::Wstring) => Err(self.refuse(
                 fr,
@@ -1501,7 +1684,11 @@ impl<'m> Tr<'m> {
     fn expr(&mut self, fr: &mut Frame, e: &Expr) -> R<Val> {
         Ok(match &e.kind {
             ExprKind::Ref(_) | ExprKind::Null => {
-                return Err(self.refuse(fr, Code::E1105, "a reference (REF_TO)"));
+                return Err(self.refuse(
+                    fr,
+                    Code::E1105,
+                    "an address (`ADR(x)`, `REF(x)`, `NULL`): a circuit has no memory addresses",
+                ));
             }
             ExprKind::Const(v) => {
                 let t = self.elem(fr, e.ty)?;
@@ -1583,6 +1770,29 @@ impl<'m> Tr<'m> {
                 v?
             }
         })
+    }
+}
+
+/// The refusals of pointers and references.
+/// (After the analysis a pointer is a structure holding a reference, so
+/// both are refused where the first reference is met: the column says
+/// which construct it is.)
+const NO_ADDRESSES: &str = "a pointer or a reference (`POINTER TO`, `ADR(x)`, `REF_TO`, `REF(x)`, `p^`): a circuit has no memory addresses";
+
+impl Tr<'_> {
+    /// Whether values of type `t` are addresses: a reference, or a pointer
+    /// (after the analysis the structure `{OBJECT, BASE, OFFSET}` whose
+    /// BASE is a reference, docs/oop.md).
+    fn is_address(&self, t: TypeId) -> Option<&'static str> {
+        match self.m.types.kind(t) {
+            TypeKind::Ref(_) => Some(NO_ADDRESSES),
+            TypeKind::Ptr(_) => Some(NO_ADDRESSES),
+            TypeKind::Struct { fields } => fields
+                .iter()
+                .any(|f| matches!(self.m.types.kind(f.ty), TypeKind::Ref(_)))
+                .then_some(NO_ADDRESSES),
+            _ => None,
+        }
     }
 }
 

@@ -56,6 +56,9 @@ pub mod limits {
     pub const LOOP_ITERATIONS: usize = 4096;
     /// Elements of an array that one run-time index may select among.
     pub const INDEXED_ELEMENTS: usize = 1024;
+    /// Function block instances among which one call chosen at run time
+    /// (`fbs[i](...)`) is inlined.
+    pub const INDEXED_INSTANCES: usize = 64;
     /// Components of a whole circuit.
     pub const COMPONENTS: usize = 1_000_000;
 }
@@ -840,8 +843,17 @@ impl<'m> Tr<'m> {
         self.at = (s.line, s.col);
         match &s.kind {
             StmtKind::Assign { place, value } => {
-                let v = self.expr(fr, value)?;
-                let loc = self.place(fr, place)?;
+                // As the VM: the index expressions first; the element is
+                // checked after the value only when the value calls
+                // nothing and the place has a single index.
+                let pre = self.place_indices(fr, place)?;
+                let (loc, v) = if !stc_ir::visit::has_call(value) && single_index(place) {
+                    let v = self.expr(fr, value)?;
+                    (self.place_at(fr, place, &pre)?, v)
+                } else {
+                    let loc = self.place_at(fr, place, &pre)?;
+                    (loc, self.expr(fr, value)?)
+                };
                 self.store(fr, &loc, v)?;
             }
             StmtKind::CallFb {
@@ -852,12 +864,19 @@ impl<'m> Tr<'m> {
                 outputs,
             } => {
                 let loc = self.place(fr, instance)?;
-                let Loc::Fixed(inst) = loc else {
-                    return Err(self.refuse(
-                        fr,
-                        Code::E1103,
-                        "a call of a function block instance chosen by a run-time index",
-                    ));
+                let inst = match loc {
+                    Loc::Fixed(inst) => inst,
+                    Loc::Dyn { idx, elems } => {
+                        return self
+                            .call_fb_chosen(fr, s, *fb, idx, &elems, inputs, inouts, outputs)
+                    }
+                    Loc::Part { .. } => {
+                        return Err(self.refuse(
+                            fr,
+                            Code::E1105,
+                            "a call of a part of a bit string",
+                        ))
+                    }
                 };
                 self.call_fb(fr, *fb, inst, inputs, inouts)?;
                 self.at = (s.line, s.col);
@@ -1255,6 +1274,61 @@ impl<'m> Tr<'m> {
         Ok(())
     }
 
+    /// A call of the instance `elems[idx]` chosen at run time
+    /// (`fbs[i](...)`): the body of each candidate inlined under
+    /// `idx = k`, like the arms of a CASE, and the outputs selected from
+    /// the chosen one.
+    #[allow(clippy::too_many_arguments)]
+    fn call_fb_chosen(
+        &mut self,
+        fr: &mut Frame,
+        s: &Stmt,
+        fb: PouId,
+        idx: NetId,
+        elems: &[SlotId],
+        inputs: &[(VarId, Expr)],
+        inouts: &[(VarId, Place)],
+        outputs: &[Output],
+    ) -> R<()> {
+        if elems.len() > limits::INDEXED_INSTANCES {
+            return Err(self.refuse(
+                fr,
+                Code::E1103,
+                format!(
+                    "a call of a function block instance chosen at run time among {} (a circuit inlines at most {} candidates)",
+                    elems.len(),
+                    limits::INDEXED_INSTANCES
+                ),
+            ));
+        }
+        for (k, &inst) in elems.iter().enumerate() {
+            let kn = self.b.konst(ElemType::Lint, Value::Int(k as i128));
+            let eq = self
+                .b
+                .op(Kind::Binary(BinOp::Eq), vec![idx, kn], ElemType::Bool)
+                .0;
+            self.branch(
+                fr,
+                eq,
+                &mut |t, fr| t.call_fb(fr, fb, inst, inputs, inouts),
+                &mut |_, _| Ok(()),
+            )?;
+            self.at = (s.line, s.col);
+        }
+        for o in outputs {
+            let mut picks = Vec::with_capacity(elems.len());
+            for &e in elems {
+                match self.child(e, o.var.0 as usize) {
+                    Some(c) => picks.push(c),
+                    None => return Err(self.refuse(fr, Code::E1105, "an output without storage")),
+                }
+            }
+            let v = self.read(fr, &Loc::Dyn { idx, elems: picks })?;
+            self.output(fr, o, v)?;
+        }
+        Ok(())
+    }
+
     /// The run-time path of an instance (`Main.tmr`).
     fn slot_name(&self, s: SlotId) -> Option<String> {
         self.inst_names.get(&s.0).cloned()
@@ -1327,6 +1401,36 @@ impl<'m> Tr<'m> {
     // ---- places -----------------------------------------------------------
 
     fn place(&mut self, fr: &mut Frame, p: &Place) -> R<Loc> {
+        let pre = self.place_indices(fr, p)?;
+        self.place_at(fr, p, &pre)
+    }
+
+    /// The values of all the index expressions of a place, in order: they
+    /// are all computed before any of them is checked against its bounds
+    /// (as on every back end).
+    fn place_indices(&mut self, fr: &mut Frame, p: &Place) -> R<Vec<(NetId, Option<(u32, u32)>)>> {
+        let mut out = Vec::new();
+        for proj in &p.proj {
+            if let Proj::Index(list) = proj {
+                for (e, _, _) in list {
+                    // A checked index reports its own position.
+                    let (at, e) = e.located();
+                    out.push((self.scalar_net(fr, e)?, at));
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// The place `p` whose index values are `pre` (see
+    /// [`Self::place_indices`]): the indices checked in order.
+    fn place_at(
+        &mut self,
+        fr: &mut Frame,
+        p: &Place,
+        pre: &[(NetId, Option<(u32, u32)>)],
+    ) -> R<Loc> {
+        let mut next = 0usize;
         let mut loc = match &p.root {
             Root::Var(v) => match fr.binds.get(v.0 as usize).cloned() {
                 Some(Bind::Slot(s)) => Loc::Fixed(s),
@@ -1356,7 +1460,11 @@ impl<'m> Tr<'m> {
             loc = match proj {
                 Proj::Field(i) => self.project(fr, loc, *i as usize)?,
                 Proj::FbVar(_, v) => self.project(fr, loc, v.0 as usize)?,
-                Proj::Index(list) => self.index(fr, loc, list)?,
+                Proj::Index(list) => {
+                    let vals = pre.get(next..next + list.len()).unwrap_or(&[]);
+                    next += list.len();
+                    self.index(fr, loc, list, vals)?
+                }
                 Proj::Part(size, pos) => Loc::Part {
                     word: Box::new(loc),
                     bits: size.bits(),
@@ -1389,12 +1497,18 @@ impl<'m> Tr<'m> {
         })
     }
 
-    fn index(&mut self, fr: &mut Frame, loc: Loc, list: &[(Expr, i128, i128)]) -> R<Loc> {
+    fn index(
+        &mut self,
+        fr: &mut Frame,
+        loc: Loc,
+        list: &[(Expr, i128, i128)],
+        vals: &[(NetId, Option<(u32, u32)>)],
+    ) -> R<Loc> {
+        if vals.len() != list.len() {
+            return Err(self.refuse(fr, Code::E1105, "an index without its value"));
+        }
         let mut nets = Vec::with_capacity(list.len());
-        for (e, lo, hi) in list {
-            // A checked index reports its own position.
-            let (at, e) = e.located();
-            let n = self.scalar_net(fr, e)?;
+        for ((_, lo, hi), &(n, at)) in list.iter().zip(vals) {
             // A run-time index is checked against its bounds (a fault
             // site); a constant one was checked by the analyser.
             let n = match self.b.known(n).and_then(Value::as_int) {
@@ -1423,15 +1537,17 @@ impl<'m> Tr<'m> {
             .iter()
             .map(|n| self.b.known(*n).and_then(Value::as_int))
             .collect();
-        let Loc::Fixed(arr) = loc else {
-            return Err(self.refuse(
-                fr,
-                Code::E1103,
-                "an array element chosen by a run-time index inside another one chosen at run time",
-            ));
+        // The arrays the index applies to: one, or one per element of an
+        // outer array chosen at run time (`a[i][j]`, `a[i].b[j]`).
+        let (outer, arrays) = match loc {
+            Loc::Fixed(arr) => (None, vec![arr]),
+            Loc::Dyn { idx, elems } => (Some(idx), elems),
+            Loc::Part { .. } => {
+                return Err(self.refuse(fr, Code::E1105, "an index into a part of a bit string"))
+            }
         };
-        let count = match &self.slots[arr.0 as usize] {
-            Slot::Agg(k) => k.len(),
+        let count = match arrays.first().map(|a| &self.slots[a.0 as usize]) {
+            Some(Slot::Agg(k)) => k.len(),
             _ => 0,
         };
         if let Some(cs) = consts {
@@ -1439,27 +1555,56 @@ impl<'m> Tr<'m> {
             for ((_, lo, hi), i) in list.iter().zip(cs) {
                 off = off * (hi - lo + 1) + (i - lo);
             }
-            return match usize::try_from(off).ok().and_then(|o| self.child(arr, o)) {
-                Some(c) => Ok(Loc::Fixed(c)),
-                None => Err(self.refuse(fr, Code::E1105, "a constant index outside its array")),
-            };
+            let mut picked = Vec::with_capacity(arrays.len());
+            for arr in &arrays {
+                match usize::try_from(off).ok().and_then(|o| self.child(*arr, o)) {
+                    Some(c) => picked.push(c),
+                    None => {
+                        return Err(self.refuse(
+                            fr,
+                            Code::E1105,
+                            "a constant index outside its array",
+                        ))
+                    }
+                }
+            }
+            return Ok(match outer {
+                None => Loc::Fixed(picked[0]),
+                Some(idx) => Loc::Dyn { idx, elems: picked },
+            });
         }
-        if count > limits::INDEXED_ELEMENTS {
+        let total = count.saturating_mul(arrays.len());
+        if total > limits::INDEXED_ELEMENTS {
             return Err(self.refuse(
                 fr,
                 Code::E1103,
-                format!(
-                    "an array of {count} elements indexed at run time (a circuit selects among at most {})",
-                    limits::INDEXED_ELEMENTS
-                ),
+                if outer.is_some() {
+                    format!(
+                        "array elements chosen at run time inside others chosen at run time: {total} elements to select among (a circuit selects among at most {})",
+                        limits::INDEXED_ELEMENTS
+                    )
+                } else {
+                    format!(
+                        "an array of {count} elements indexed at run time (a circuit selects among at most {})",
+                        limits::INDEXED_ELEMENTS
+                    )
+                },
             ));
         }
-        // The zero-based offset, in LINT.
+        // The zero-based offset, in LINT (after the outer one's: the
+        // elements of every inner array in order).
         let lint = ElemType::Lint;
-        let mut off = self.b.konst(lint, Value::Int(0));
+        let mut off = match outer {
+            Some(idx) => idx,
+            None => self.b.konst(lint, Value::Int(0)),
+        };
+        let mut first = outer.is_none();
         for ((_, lo, hi), n) in list.iter().zip(nets) {
             let w = self.b.konst(lint, Value::Int(hi - lo + 1));
-            off = self.b.op(Kind::Binary(BinOp::Mul), vec![off, w], lint).0;
+            if !first {
+                off = self.b.op(Kind::Binary(BinOp::Mul), vec![off, w], lint).0;
+            }
+            first = false;
             let t = self.b.ty(n);
             let n = if t == lint {
                 n
@@ -1470,10 +1615,19 @@ impl<'m> Tr<'m> {
             let d = self.b.op(Kind::Binary(BinOp::Sub), vec![n, l], lint).0;
             off = self.b.op(Kind::Binary(BinOp::Add), vec![off, d], lint).0;
         }
-        let elems = match &self.slots[arr.0 as usize] {
-            Slot::Agg(k) => k.to_vec(),
-            _ => Vec::new(),
-        };
+        let mut elems = Vec::with_capacity(total);
+        for arr in &arrays {
+            match &self.slots[arr.0 as usize] {
+                Slot::Agg(k) if k.len() == count => elems.extend(k.iter().copied()),
+                _ => {
+                    return Err(self.refuse(
+                        fr,
+                        Code::E1105,
+                        "arrays of different shapes chosen at run time",
+                    ))
+                }
+            }
+        }
         Ok(Loc::Dyn { idx: off, elems })
     }
 
@@ -1794,6 +1948,18 @@ impl Tr<'_> {
             _ => None,
         }
     }
+}
+
+/// Whether a place has exactly one index (`a[i]`, not `a[i, j]` or
+/// `a[i][j]`) from a variable: the one case where the VM checks the index
+/// after computing the value assigned.
+fn single_index(p: &Place) -> bool {
+    let mut indexes = p.proj.iter().filter_map(|pr| match pr {
+        Proj::Index(i) => Some(i),
+        _ => None,
+    });
+    let one = matches!((indexes.next(), indexes.next()), (Some(i), None) if i.len() == 1);
+    one && !matches!(p.root, Root::Deref(_))
 }
 
 /// A variable's name in paths (a hidden variable gets its role after `$`).

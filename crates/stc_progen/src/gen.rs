@@ -455,8 +455,16 @@ impl Gen {
     // ------------------------------------------------------------------
     // Types.
 
+    /// Whether values of `e` may be generated (a circuit has no strings).
+    pub(crate) fn allowed(&self, e: E) -> bool {
+        !(self.size.circuit && matches!(e, E::String | E::Wstring))
+    }
+
     pub(crate) fn elem(&mut self) -> E {
-        let w: Vec<u64> = ELEMS.iter().map(|&(_, w)| w).collect();
+        let w: Vec<u64> = ELEMS
+            .iter()
+            .map(|&(e, w)| if self.allowed(e) { w } else { 0 })
+            .collect();
         ELEMS[self.rng.weighted(&w)].0
     }
 
@@ -537,6 +545,7 @@ impl Gen {
         ];
         match self.rng.weighted(&w) {
             0 => Ty::E(self.elem()),
+            1 if self.size.circuit => Ty::E(self.elem()),
             1 => Ty::Str {
                 wide: self.rng.chance(25),
                 len: self.rng.range(1, 12) as u32,
@@ -750,6 +759,7 @@ impl Gen {
         ];
         match self.rng.weighted(&w) {
             0 => Ty::E(self.elem()),
+            1 if self.size.circuit => Ty::E(self.elem()),
             1 => Ty::Str {
                 wide: self.rng.chance(25),
                 len: self.rng.range(1, 20) as u32,
@@ -822,6 +832,7 @@ impl Gen {
             .weighted(&[20, 1, if self.types.enums.is_empty() { 0 } else { 2 }])
         {
             0 => Ty::E(self.elem()),
+            1 if self.size.circuit => Ty::E(self.elem()),
             1 => Ty::Str {
                 wide: false,
                 len: self.rng.range(4, 30) as u32,
@@ -841,7 +852,11 @@ impl Gen {
             E::String | E::Wstring => return None,
             _ => 'L',
         };
-        let area = ['I', 'Q', 'M'][self.rng.index(3)];
+        let mut area = ['I', 'Q', 'M'][self.rng.index(3)];
+        if area == 'I' && self.size.circuit {
+            // (A circuit's `%I` variables are its inputs: never written.)
+            area = 'M';
+        }
         let n = self.next_address;
         self.next_address += 1;
         Some(if size == 'X' {
@@ -1378,6 +1393,7 @@ impl Gen {
             let narrower: Vec<E> = ELEMS
                 .iter()
                 .map(|&(s, _)| s)
+                .filter(|&s| self.allowed(s))
                 .filter(|&s| stc_values::implicit_widening(s, e))
                 .collect();
             if !narrower.is_empty() {

@@ -107,6 +107,9 @@ impl Refusal {
 
 type R<T> = Result<T, Box<Refusal>>;
 
+/// The value of an index expression and its position (line, column).
+type IndexVal = (NetId, Option<(u32, u32)>);
+
 /// Translates the PROGRAM `program` of `m`.
 pub fn translate(m: &Module, program: PouId) -> Result<Circuit, Box<Refusal>> {
     let pou = m.pou(program);
@@ -1408,7 +1411,7 @@ impl<'m> Tr<'m> {
     /// The values of all the index expressions of a place, in order: they
     /// are all computed before any of them is checked against its bounds
     /// (as on every back end).
-    fn place_indices(&mut self, fr: &mut Frame, p: &Place) -> R<Vec<(NetId, Option<(u32, u32)>)>> {
+    fn place_indices(&mut self, fr: &mut Frame, p: &Place) -> R<Vec<IndexVal>> {
         let mut out = Vec::new();
         for proj in &p.proj {
             if let Proj::Index(list) = proj {
@@ -1424,12 +1427,7 @@ impl<'m> Tr<'m> {
 
     /// The place `p` whose index values are `pre` (see
     /// [`Self::place_indices`]): the indices checked in order.
-    fn place_at(
-        &mut self,
-        fr: &mut Frame,
-        p: &Place,
-        pre: &[(NetId, Option<(u32, u32)>)],
-    ) -> R<Loc> {
+    fn place_at(&mut self, fr: &mut Frame, p: &Place, pre: &[IndexVal]) -> R<Loc> {
         let mut next = 0usize;
         let mut loc = match &p.root {
             Root::Var(v) => match fr.binds.get(v.0 as usize).cloned() {
@@ -1502,7 +1500,7 @@ impl<'m> Tr<'m> {
         fr: &mut Frame,
         loc: Loc,
         list: &[(Expr, i128, i128)],
-        vals: &[(NetId, Option<(u32, u32)>)],
+        vals: &[IndexVal],
     ) -> R<Loc> {
         if vals.len() != list.len() {
             return Err(self.refuse(fr, Code::E1105, "an index without its value"));

@@ -98,12 +98,18 @@ impl Kind {
     }
 }
 
+/// The input pins of a component: held inline up to three (almost every
+/// component), so that a component costs no allocation of its own.
+pub type Pins = smallvec::SmallVec<[NetId; 3]>;
+/// The output pins: X1, and F1 for a component that may fault.
+pub type Outs = smallvec::SmallVec<[NetId; 2]>;
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct Component {
     pub kind: Kind,
-    pub inputs: Vec<NetId>,
+    pub inputs: Pins,
     /// X1, then F1 (the fault code, USINT) for a component that may fault.
-    pub outputs: Vec<NetId>,
+    pub outputs: Outs,
 }
 
 /// A whole circuit.

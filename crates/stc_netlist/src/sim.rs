@@ -267,9 +267,9 @@ mod tests {
             Some(ElemType::Dint),
         );
         let reg = b.components() - 1;
-        let (d, _) = b.op(Kind::Binary(BinOp::Add), vec![q, step], ElemType::Dint);
-        b.c.components[reg].inputs = vec![d];
-        let (_, f) = b.op(Kind::Binary(BinOp::Div), vec![q, step], ElemType::Dint);
+        let (d, _) = b.op(Kind::Binary(BinOp::Add), &[q, step], ElemType::Dint);
+        b.c.components[reg].inputs = crate::circuit::Pins::from_slice(&[d]);
+        let (_, f) = b.op(Kind::Binary(BinOp::Div), &[q, step], ElemType::Dint);
         let on = b.bool(true);
         b.add(
             Kind::Fault {
@@ -282,7 +282,7 @@ mod tests {
             vec![f.unwrap(), on],
             None,
         );
-        b.add(Kind::Output { name: "C.n".into() }, vec![d], None);
+        b.add(Kind::Output { name: "C.n".into() }, &[d], None);
         b.finish()
     }
 

@@ -159,7 +159,7 @@ pub fn translate_config(m: &Module, config: usize) -> Result<Circuit, Box<Refusa
                     init: Value::Bool(false),
                     aliases: Vec::new(),
                 },
-                vec![],
+                &[],
                 Some(ElemType::Bool),
             );
             let run = Run {
@@ -398,7 +398,7 @@ impl<'m> Tr<'m> {
                                 init: v,
                                 aliases: Vec::new(),
                             },
-                            vec![],
+                            &[],
                             Some(e),
                         );
                         (CellKind::Input, n)
@@ -410,7 +410,7 @@ impl<'m> Tr<'m> {
                                 init: v,
                                 aliases: Vec::new(),
                             },
-                            vec![],
+                            &[],
                             Some(e),
                         );
                         (CellKind::Reg(self.b.components() - 1), n)
@@ -787,7 +787,7 @@ impl<'m> Tr<'m> {
         for c in 0..self.cells.len() {
             let v = self.env[c];
             if let CellKind::Reg(comp) = self.cells[c].kind {
-                self.b.c.components[comp].inputs = vec![v];
+                self.b.c.components[comp].inputs = crate::circuit::Pins::from_slice(&[v]);
             }
         }
         let mut shown = Vec::new();
@@ -803,7 +803,7 @@ impl<'m> Tr<'m> {
             }
         }
         for (name, v) in shown {
-            self.b.add(Kind::Output { name }, vec![v], None);
+            self.b.add(Kind::Output { name }, &[v], None);
         }
     }
 
@@ -1092,18 +1092,18 @@ impl<'m> Tr<'m> {
             let r = if lo == hi {
                 let k = self.b.konst(t, Value::Int(lo));
                 self.b
-                    .op(Kind::Binary(BinOp::Eq), vec![sel, k], ElemType::Bool)
+                    .op(Kind::Binary(BinOp::Eq), &[sel, k], ElemType::Bool)
                     .0
             } else {
                 let kl = self.b.konst(t, Value::Int(lo));
                 let kh = self.b.konst(t, Value::Int(hi));
                 let ge = self
                     .b
-                    .op(Kind::Binary(BinOp::Ge), vec![sel, kl], ElemType::Bool)
+                    .op(Kind::Binary(BinOp::Ge), &[sel, kl], ElemType::Bool)
                     .0;
                 let le = self
                     .b
-                    .op(Kind::Binary(BinOp::Le), vec![sel, kh], ElemType::Bool)
+                    .op(Kind::Binary(BinOp::Le), &[sel, kh], ElemType::Bool)
                     .0;
                 self.b.and(ge, le)
             };
@@ -1176,7 +1176,7 @@ impl<'m> Tr<'m> {
             match v {
                 Val::S(n) => {
                     let t = self.b.ty(n);
-                    Val::S(self.b.op(Kind::Unary(stc_values::UnOp::Not), vec![n], t).0)
+                    Val::S(self.b.op(Kind::Unary(stc_values::UnOp::Not), &[n], t).0)
                 }
                 Val::A(_) => {
                     return Err(self.refuse(fr, Code::E1105, "a negated structured output"))
@@ -1200,7 +1200,7 @@ impl<'m> Tr<'m> {
                 line: self.at.0,
                 col: self.at.1,
             },
-            vec![code, alive],
+            &[code, alive],
             None,
         );
     }
@@ -1213,7 +1213,7 @@ impl<'m> Tr<'m> {
         }
     }
 
-    fn op(&mut self, fr: &Frame, kind: Kind, ins: Vec<NetId>, out: ElemType) -> NetId {
+    fn op(&mut self, fr: &Frame, kind: Kind, ins: &[NetId], out: ElemType) -> NetId {
         let (x, f) = self.b.op(kind, ins, out);
         self.check(fr, f);
         x
@@ -1308,7 +1308,7 @@ impl<'m> Tr<'m> {
             let kn = self.b.konst(ElemType::Lint, Value::Int(k as i128));
             let eq = self
                 .b
-                .op(Kind::Binary(BinOp::Eq), vec![idx, kn], ElemType::Bool)
+                .op(Kind::Binary(BinOp::Eq), &[idx, kn], ElemType::Bool)
                 .0;
             self.branch(
                 fr,
@@ -1522,7 +1522,7 @@ impl<'m> Tr<'m> {
                             hi: *hi,
                             fault: FaultKind::IndexOutOfBounds,
                         },
-                        vec![n],
+                        &[n],
                         t,
                     );
                     self.at = outer;
@@ -1600,18 +1600,18 @@ impl<'m> Tr<'m> {
         for ((_, lo, hi), n) in list.iter().zip(nets) {
             let w = self.b.konst(lint, Value::Int(hi - lo + 1));
             if !first {
-                off = self.b.op(Kind::Binary(BinOp::Mul), vec![off, w], lint).0;
+                off = self.b.op(Kind::Binary(BinOp::Mul), &[off, w], lint).0;
             }
             first = false;
             let t = self.b.ty(n);
             let n = if t == lint {
                 n
             } else {
-                self.b.op(Kind::Convert, vec![n], lint).0
+                self.b.op(Kind::Convert, &[n], lint).0
             };
             let l = self.b.konst(lint, Value::Int(*lo));
-            let d = self.b.op(Kind::Binary(BinOp::Sub), vec![n, l], lint).0;
-            off = self.b.op(Kind::Binary(BinOp::Add), vec![off, d], lint).0;
+            let d = self.b.op(Kind::Binary(BinOp::Sub), &[n, l], lint).0;
+            off = self.b.op(Kind::Binary(BinOp::Add), &[off, d], lint).0;
         }
         let mut elems = Vec::with_capacity(total);
         for arr in &arrays {
@@ -1667,7 +1667,7 @@ impl<'m> Tr<'m> {
                     bits: *bits,
                     pos: *pos,
                 };
-                Ok(Val::S(self.b.op(kind, vec![w], *ty).0))
+                Ok(Val::S(self.b.op(kind, &[w], *ty).0))
             }
             Loc::Fixed(s) => self.read_slot(fr, *s),
             Loc::Dyn { idx, elems } => {
@@ -1706,7 +1706,7 @@ impl<'m> Tr<'m> {
                         ins.push(*n);
                     }
                 }
-                Val::S(self.b.op(Kind::Index { lo: 0 }, ins, t).0)
+                Val::S(self.b.op(Kind::Index { lo: 0 }, &ins, t).0)
             }
             None => Val::A(vec![]),
         }
@@ -1729,7 +1729,7 @@ impl<'m> Tr<'m> {
                     bits: *bits,
                     pos: *pos,
                 };
-                let n = self.b.op(kind, vec![w, v], t).0;
+                let n = self.b.op(kind, &[w, v], t).0;
                 self.store(fr, word, Val::S(n))
             }
             Loc::Fixed(s) => self.write_slot(fr, *s, v, None),
@@ -1738,7 +1738,7 @@ impl<'m> Tr<'m> {
                     let kn = self.b.konst(ElemType::Lint, Value::Int(k as i128));
                     let eq = self
                         .b
-                        .op(Kind::Binary(BinOp::Eq), vec![*idx, kn], ElemType::Bool)
+                        .op(Kind::Binary(BinOp::Eq), &[*idx, kn], ElemType::Bool)
                         .0;
                     self.write_slot(fr, *e, v.clone(), Some(eq))?;
                 }
@@ -1793,7 +1793,7 @@ impl<'m> Tr<'m> {
         if self.b.ty(n) == t {
             n
         } else {
-            self.b.op(Kind::Convert, vec![n], t).0
+            self.b.op(Kind::Convert, &[n], t).0
         }
     }
 
@@ -1853,7 +1853,7 @@ impl<'m> Tr<'m> {
             ExprKind::Unary(op, a) => {
                 let t = self.elem(fr, e.ty)?;
                 let a = self.scalar_net(fr, a)?;
-                Val::S(self.op(fr, Kind::Unary(*op), vec![a], t))
+                Val::S(self.op(fr, Kind::Unary(*op), &[a], t))
             }
             ExprKind::Binary(op, a, b) => {
                 let t = self.elem(fr, e.ty)?;
@@ -1861,7 +1861,7 @@ impl<'m> Tr<'m> {
                 self.elem(fr, b.ty)?;
                 let a = self.scalar_net(fr, a)?;
                 let b = self.scalar_net(fr, b)?;
-                Val::S(self.op(fr, Kind::Binary(*op), vec![a, b], t))
+                Val::S(self.op(fr, Kind::Binary(*op), &[a, b], t))
             }
             ExprKind::Convert(a) => {
                 let t = self.elem(fr, e.ty)?;
@@ -1870,7 +1870,7 @@ impl<'m> Tr<'m> {
                 if self.b.ty(a) == t {
                     Val::S(a)
                 } else {
-                    Val::S(self.op(fr, Kind::Convert, vec![a], t))
+                    Val::S(self.op(fr, Kind::Convert, &[a], t))
                 }
             }
             ExprKind::Check { value, lo, hi } => {
@@ -1884,7 +1884,7 @@ impl<'m> Tr<'m> {
                         hi: *hi,
                         fault: FaultKind::SubrangeViolation,
                     },
-                    vec![a],
+                    &[a],
                     t,
                 ))
             }
@@ -1909,11 +1909,11 @@ impl<'m> Tr<'m> {
                     self.elem(fr, a.ty)?;
                     ins.push(self.scalar_net(fr, a)?);
                 }
-                Val::S(self.op(fr, Kind::Call(*func), ins, t))
+                Val::S(self.op(fr, Kind::Call(*func), &ins, t))
             }
             ExprKind::CurTime => {
                 let t = self.elem(fr, e.ty)?;
-                Val::S(self.b.op(Kind::Clock, vec![], t).0)
+                Val::S(self.b.op(Kind::Clock, &[], t).0)
             }
             ExprKind::Located { line, col, expr } => {
                 let outer = std::mem::replace(&mut self.at, (*line, *col));

@@ -308,8 +308,8 @@ fn build(name: String, insts: Vec<RawInst>) -> Result<Circuit, ReadError> {
         if inputs.iter().enumerate().any(|(j, (k, _))| *k != j + 1) {
             return Err(structure(format!("{}: input pins are not A1..An", inst.id)));
         }
-        let inputs: Vec<NetId> = inputs.into_iter().map(|(_, n)| n).collect();
-        let outputs: Vec<NetId> = outputs.into_iter().map(|(_, n)| n).collect();
+        let inputs: crate::circuit::Pins = inputs.into_iter().map(|(_, n)| n).collect();
+        let outputs: crate::circuit::Outs = outputs.into_iter().map(|(_, n)| n).collect();
         let kind = kind_of(inst, &inputs, &outputs, &nets)?;
         check_arity(inst, &kind, inputs.len(), outputs.len())?;
         comps.push(Component {

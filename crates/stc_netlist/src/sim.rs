@@ -254,7 +254,7 @@ mod tests {
                 init: Value::Int(1),
                 aliases: vec![],
             },
-            vec![],
+            &[],
             Some(ElemType::Dint),
         );
         let q = b.add(
@@ -263,7 +263,7 @@ mod tests {
                 init: Value::Int(0),
                 aliases: vec![],
             },
-            vec![],
+            &[],
             Some(ElemType::Dint),
         );
         let reg = b.components() - 1;

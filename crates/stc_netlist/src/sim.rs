@@ -279,7 +279,7 @@ mod tests {
                 line: 3,
                 col: 1,
             },
-            vec![f.unwrap(), on],
+            &[f.unwrap(), on],
             None,
         );
         b.add(Kind::Output { name: "C.n".into() }, &[d], None);

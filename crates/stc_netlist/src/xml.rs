@@ -539,16 +539,16 @@ mod tests {
                 init: Value::Int(3),
                 aliases: vec![],
             },
-            vec![],
+            &[],
             Some(ElemType::Int),
         );
         let one = b.konst(ElemType::Int, Value::Int(1));
         let (s, _) = b.op(
             Kind::Binary(stc_values::BinOp::Add),
-            vec![x, one],
+            &[x, one],
             ElemType::Int,
         );
-        b.add(Kind::Output { name: "M.y".into() }, vec![s], None);
+        b.add(Kind::Output { name: "M.y".into() }, &[s], None);
         let c = b.finish();
         let text = write(&c);
         let back = read(&text).unwrap();

@@ -1508,10 +1508,12 @@ impl<'m> Tr<'m> {
         let mut nets = Vec::with_capacity(list.len());
         for ((_, lo, hi), &(n, at)) in list.iter().zip(vals) {
             // A run-time index is checked against its bounds (a fault
-            // site); a constant one was checked by the analyser.
+            // site), and so is a constant one outside them (folded from an
+            // expression the analyser does not evaluate, `a[LIMIT(...)]`:
+            // the cycle faults there when the statement is reached).
             let n = match self.b.known(n).and_then(Value::as_int) {
-                Some(_) => n,
-                None => {
+                Some(i) if (*lo..=*hi).contains(&i) => n,
+                _ => {
                     let t = self.b.ty(n);
                     let outer = self.at;
                     self.at = at.unwrap_or(outer);

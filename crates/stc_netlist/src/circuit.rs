@@ -308,3 +308,50 @@ pub fn may_fault(kind: &Kind, in_tys: &[ElemType], out_ty: ElemType) -> bool {
         _ => false,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn get(w: i128, bits: u32, pos: u32, t: ElemType) -> Value {
+        let k = Kind::PartGet { bits, pos };
+        eval(&k, &[ElemType::Lword], &[Value::Int(w)], t).0
+    }
+
+    fn set(w: i128, v: Value, bits: u32, pos: u32, t: ElemType) -> Value {
+        let k = Kind::PartSet { bits, pos };
+        eval(&k, &[t, ElemType::Bool], &[Value::Int(w), v], t).0
+    }
+
+    #[test]
+    fn parts_of_bit_strings_are_read_and_replaced() {
+        assert_eq!(get(0x00F0, 1, 4, ElemType::Bool), Value::Bool(true));
+        assert_eq!(get(0x00F0, 1, 3, ElemType::Bool), Value::Bool(false));
+        assert_eq!(get(0xABCD, 8, 1, ElemType::Byte), Value::Int(0xAB));
+        let top = 1i128 << 63;
+        assert_eq!(get(top, 1, 63, ElemType::Bool), Value::Bool(true));
+        assert_eq!(get(top | 5, 32, 0, ElemType::Dword), Value::Int(5));
+        // A write keeps the other bits and takes the part's low bits.
+        assert_eq!(
+            set(0x00F0, Value::Bool(true), 1, 0, ElemType::Word),
+            Value::Int(0x00F1)
+        );
+        assert_eq!(
+            set(0xFFFF, Value::Int(0x1AB), 8, 1, ElemType::Word),
+            Value::Int(0xABFF)
+        );
+        assert_eq!(
+            set(0, Value::Bool(true), 1, 63, ElemType::Lword),
+            Value::Int(top)
+        );
+        // A signed word stays in its type's range.
+        assert_eq!(
+            set(-1, Value::Bool(false), 1, 15, ElemType::Int),
+            Value::Int(32767)
+        );
+        assert_eq!(
+            set(0, Value::Bool(true), 1, 15, ElemType::Int),
+            Value::Int(-32768)
+        );
+    }
+}

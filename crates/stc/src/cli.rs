@@ -550,16 +550,12 @@ fn run(cli: Cli) -> Outcome {
                     return o;
                 }
                 Emit::Netlist => {
-                    if let Some(c) = config {
-                        return usage_error(format!(
-                            "--config {c}: the netlist back end makes a circuit of one PROGRAM; choose it with --program"
-                        ));
-                    }
-                    let p = match stc_netlist::choose_program(&module, program.as_deref()) {
-                        Ok(p) => p,
-                        Err(e) => return usage_error(e),
-                    };
-                    match stc_netlist::translate(&module, p) {
+                    let unit =
+                        match stc_netlist::choose(&module, config.as_deref(), program.as_deref()) {
+                            Ok(u) => u,
+                            Err(e) => return usage_error(e),
+                        };
+                    match stc_netlist::translate_unit(&module, unit) {
                         Ok(circuit) => {
                             let doc = stc_netlist::xml::write(&circuit).into_bytes();
                             // The process ends right after: freeing the

@@ -147,12 +147,13 @@ fn usage_error(msg: impl std::fmt::Display) -> Outcome {
 
 /// Runs `stc run`.
 pub fn run(opts: &Options, args: RunArgs) -> Outcome {
-    if args.backend == Backend::Netlist && args.config.is_some() {
-        return usage_error(
-            "--backend netlist runs one PROGRAM (choose it with --program), not a configuration",
-        );
-    }
-    match load(&args.files, opts, args.backend, args.program.as_deref()) {
+    match load(
+        &args.files,
+        opts,
+        args.backend,
+        args.config.as_deref(),
+        args.program.as_deref(),
+    ) {
         Ok((engine, diagnostics)) => setup_and_run(engine, &args, diagnostics),
         Err(o) => o,
     }
@@ -164,6 +165,7 @@ fn load(
     files: &[PathBuf],
     opts: &Options,
     backend: Backend,
+    config: Option<&str>,
     program: Option<&str>,
 ) -> Result<(Box<dyn Engine>, String), Outcome> {
     // Bytecode: a `.stbc` file, or its VMASM text (`--emit vmasm`), which
@@ -235,12 +237,7 @@ fn load(
         };
     }
     if backend == Backend::Netlist {
-        if program.is_none() && !module.configs.is_empty() {
-            return Err(usage_error(
-                "--backend netlist runs one PROGRAM: choose it with --program",
-            ));
-        }
-        return match stc_engine_netlist::NetlistEngine::build(&module, program) {
+        return match stc_engine_netlist::NetlistEngine::build_unit(&module, config, program) {
             Ok(engine) => Ok((Box::new(engine), rendered)),
             Err(stc_engine_netlist::Error::Refused(r)) => Err(Outcome {
                 stderr: format!(

@@ -418,21 +418,24 @@ circuit is made of.";
     E1103 Error "run-time selection a circuit cannot make"
 "An array element chosen by a run-time index becomes a multiplexer (for a
 read) or a demultiplexer (for a write) over every element; the netlist back
-end builds them for arrays of at most 1024 elements, and for one run-time
-index at a time. A larger array, an element of an element both chosen at
-run time, or a function block instance chosen at run time (`fbs[i](...)`)
-has no circuit. Use constant indices, a smaller array, or a CASE over the
-index.";
+end builds them for at most 1024 elements to choose among (for an element
+of an element both chosen at run time, `a[i][j]`, all the inner elements of
+every outer one). A call of a function block instance chosen at run time
+(`fbs[i](...)`) inlines every candidate, at most 64. Beyond those limits
+there is no circuit: use constant indices, a smaller array, or a CASE over
+the index.";
     E1104 Error "assignment to a circuit input"
 "A program's VAR_INPUT variables and its `%I` variables are input modules of
 the circuit: their values come from outside each cycle, and a circuit
 cannot drive its own input. Copy the input into a VAR variable and change
 that one.";
     E1105 Error "construct without a circuit component"
-"The construct named has no component in the netlist library (yet): access
-to a part of a bit string (`x.3`), SPLIT_DATE/SPLIT_TOD/SPLIT_DT, a
-program VAR_IN_OUT, a POU other than a PROGRAM as the circuit. The message
-says which; docs/netlist.md lists what a circuit expresses.";
+"The construct named has no component in the netlist library: a pointer or
+a reference (`POINTER TO`, `ADR(x)`, `REF_TO`, `REF(x)`, `NULL`, `p^`: a
+circuit has nets, not memory addresses), a method call (`THIS`), a program
+VAR_IN_OUT, a POU other than a PROGRAM or a CONFIGURATION as the circuit.
+The message says which, at the construct; docs/netlist.md lists what a
+circuit expresses.";
     E1106 Error "circuit too large"
 "Unrolling the loops and inlining the calls of the program would make a
 circuit of more than 1 000 000 components. Make the loops shorter or the

@@ -62,8 +62,11 @@ pub struct NetlistEngine {
     /// The document, for `reset`.
     doc: String,
     sim: Simulator,
-    /// The program the circuit is of.
+    /// The program the circuit is of (a configuration's circuit: its name).
     program: String,
+    /// A configuration's circuit: its index in the model and the names of
+    /// its program instances (each has an enable input).
+    config: Option<(u32, Vec<String>)>,
     /// Resolved at the first run (the program instance is known then).
     map: Option<Vec<Mapped>>,
 }
@@ -72,14 +75,40 @@ impl NetlistEngine {
     /// Translates `program` (by name; the only PROGRAM when `None`) of
     /// `module`, writes the document, reads it back and loads it.
     pub fn build(module: &stc_ir::Module, program: Option<&str>) -> Result<NetlistEngine, Error> {
-        let p = stc_netlist::choose_program(module, program).map_err(Error::Choose)?;
-        let circuit = stc_netlist::translate(module, p).map_err(Error::Refused)?;
+        NetlistEngine::build_unit(module, None, program)
+    }
+
+    /// Translates what `stc run` would run: the configuration `config`, the
+    /// program `program`, else the only configuration or the only program
+    /// (`stc_netlist::choose`).
+    pub fn build_unit(
+        module: &stc_ir::Module,
+        config: Option<&str>,
+        program: Option<&str>,
+    ) -> Result<NetlistEngine, Error> {
+        let unit = stc_netlist::choose(module, config, program).map_err(Error::Choose)?;
+        let circuit = stc_netlist::translate_unit(module, unit).map_err(Error::Refused)?;
         let doc = stc_netlist::xml::write(&circuit);
         let layouts = stc_ir::layout::Layouts::compute(module)
             .map_err(|d| Error::Model(format!("{} layout errors", d.len())))?;
         let data =
             stc_ir::model::build(module, &layouts).map_err(|e| Error::Model(e.to_string()))?;
-        NetlistEngine::load(Arc::new(data.model), data.init, doc)
+        let mut engine = NetlistEngine::load(Arc::new(data.model), data.init, doc)?;
+        if let stc_netlist::Unit::Config(c) = unit {
+            let names = engine
+                .model
+                .configs
+                .get(c)
+                .map(|conf| {
+                    conf.resources
+                        .iter()
+                        .flat_map(|r| r.programs.iter().map(|p| p.name.clone()))
+                        .collect()
+                })
+                .unwrap_or_default();
+            engine.config = Some((c as u32, names));
+        }
+        Ok(engine)
     }
 
     /// The engine of a document over `model` and its initial data area.
@@ -93,6 +122,7 @@ impl NetlistEngine {
             doc,
             sim: Simulator::new(circuit),
             program,
+            config: None,
             map: None,
         })
     }
@@ -101,11 +131,23 @@ impl NetlistEngine {
     /// instance `inst`.
     fn resolve(&self, inst: &ProgramInst) -> Vec<Mapped> {
         let model = Arc::clone(&self.model);
-        let instances = std::slice::from_ref(inst);
+        let all: Vec<ProgramInst> = match &self.config {
+            Some((c, _)) => model
+                .configs
+                .get(*c as usize)
+                .map(|conf| {
+                    conf.resources
+                        .iter()
+                        .flat_map(|r| r.programs.iter().cloned())
+                        .collect()
+                })
+                .unwrap_or_default(),
+            None => vec![inst.clone()],
+        };
         let scope = Scope {
             model: &model,
-            instances,
-            config: None,
+            instances: &all,
+            config: self.config.as_ref().map(|(c, _)| *c),
         };
         let mut out = Vec::new();
         for name in self.sim.names() {
@@ -159,9 +201,27 @@ impl Engine for NetlistEngine {
             .get(inst.pou as usize)
             .map(|p| p.name.clone())
             .unwrap_or_default();
-        if !pou.eq_ignore_ascii_case(&self.program) {
-            // (The command only builds this engine for one PROGRAM.)
-            return Err(VmFault::unlocated(stc_ir::FaultKind::InvalidCode, &pou));
+        match &self.config {
+            // One step runs one instance: its enable alone is TRUE.
+            Some((_, names)) => {
+                if !names.iter().any(|n| n.eq_ignore_ascii_case(&inst.name)) {
+                    return Err(VmFault::unlocated(
+                        stc_ir::FaultKind::InvalidCode,
+                        &inst.name,
+                    ));
+                }
+                for n in names {
+                    let on = n.eq_ignore_ascii_case(&inst.name);
+                    self.sim
+                        .set(&stc_netlist::enable_name(n), stc_values::Value::Bool(on));
+                }
+            }
+            None => {
+                if !pou.eq_ignore_ascii_case(&self.program) {
+                    // (The command only builds this engine for one PROGRAM.)
+                    return Err(VmFault::unlocated(stc_ir::FaultKind::InvalidCode, &pou));
+                }
+            }
         }
         if self.map.is_none() {
             self.map = Some(self.resolve(inst));

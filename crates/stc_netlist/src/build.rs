@@ -9,7 +9,7 @@
 use rustc_hash::FxHashMap;
 use stc_values::{BinOp, ElemType, Intrinsic, UnOp, Value};
 
-use crate::circuit::{eval, may_fault, Circuit, Component, Kind, NetId};
+use crate::circuit::{eval, may_fault, Circuit, Component, Kind, NetId, Outs, Pins};
 
 /// The identity of a pure component, for sharing.
 #[derive(Clone, PartialEq, Eq, Hash)]
@@ -22,6 +22,7 @@ enum Key {
     Convert,
     Call(Intrinsic),
     Clock,
+    Part(bool, u32, u32),
 }
 
 /// A constant's identity (reals by their bits, so NaN is one constant).
@@ -51,6 +52,8 @@ fn key_of(k: &Kind) -> Option<Key> {
         Kind::Convert => Key::Convert,
         Kind::Call(f) => Key::Call(*f),
         Kind::Clock => Key::Clock,
+        Kind::PartGet { bits, pos } => Key::Part(false, *bits, *pos),
+        Kind::PartSet { bits, pos } => Key::Part(true, *bits, *pos),
         _ => return None,
     })
 }
@@ -99,11 +102,12 @@ impl Builder {
     }
 
     /// A component that is never shared (modules, registers, faults).
-    pub fn add(&mut self, kind: Kind, inputs: Vec<NetId>, out: Option<ElemType>) -> NetId {
-        let outputs = match out {
-            Some(t) => vec![self.net(t, None)],
-            None => vec![],
-        };
+    pub fn add(&mut self, kind: Kind, inputs: &[NetId], out: Option<ElemType>) -> NetId {
+        let mut outputs = Outs::new();
+        if let Some(t) = out {
+            outputs.push(self.net(t, None));
+        }
+        let inputs = Pins::from_slice(inputs);
         let first = outputs.first().copied().unwrap_or(NetId(u32::MAX));
         self.c.components.push(Component {
             kind,
@@ -122,8 +126,8 @@ impl Builder {
         let n = self.net(t, Some(v.clone()));
         self.c.components.push(Component {
             kind: Kind::Const(v),
-            inputs: vec![],
-            outputs: vec![n],
+            inputs: Pins::new(),
+            outputs: Outs::from_slice(&[n]),
         });
         if let Some(k) = key {
             self.consts.insert(k, n);
@@ -142,10 +146,11 @@ impl Builder {
     /// A pure operation: folded when every input is a constant and it does
     /// not fault, shared with an equal one made before. Returns X1 and, for
     /// a component that may fault, F1.
-    pub fn op(&mut self, kind: Kind, inputs: Vec<NetId>, out: ElemType) -> (NetId, Option<NetId>) {
+    pub fn op(&mut self, kind: Kind, inputs: &[NetId], out: ElemType) -> (NetId, Option<NetId>) {
         let all_known = inputs.iter().all(|n| self.known(*n).is_some());
         if all_known && !matches!(kind, Kind::Clock) {
-            let in_tys: Vec<ElemType> = inputs.iter().map(|n| self.ty(*n)).collect();
+            let in_tys: smallvec::SmallVec<[ElemType; 4]> =
+                inputs.iter().map(|n| self.ty(*n)).collect();
             let vals: Vec<Value> = inputs
                 .iter()
                 .filter_map(|n| self.known(*n).cloned())
@@ -157,7 +162,7 @@ impl Builder {
         }
         // (Components with more than three inputs are not shared: rare,
         // and a key without allocation is worth more.)
-        let key = match (key_of(&kind), inputs.as_slice()) {
+        let key = match (key_of(&kind), inputs) {
             (Some(k), ins) if ins.len() <= 3 => {
                 let mut arr = [NetId(u32::MAX); 3];
                 arr[..ins.len()].copy_from_slice(ins);
@@ -168,16 +173,17 @@ impl Builder {
         if let Some(hit) = key.as_ref().and_then(|k| self.memo.get(k)) {
             return *hit;
         }
-        let in_tys: Vec<ElemType> = inputs.iter().map(|n| self.ty(*n)).collect();
+        let in_tys: smallvec::SmallVec<[ElemType; 4]> =
+            inputs.iter().map(|n| self.ty(*n)).collect();
         let faults = may_fault(&kind, &in_tys, out);
         let x = self.net(out, None);
         let f = faults.then(|| self.net(ElemType::Usint, None));
-        let mut outputs = Vec::with_capacity(2);
+        let mut outputs = Outs::new();
         outputs.push(x);
         outputs.extend(f);
         self.c.components.push(Component {
             kind,
-            inputs,
+            inputs: Pins::from_slice(inputs),
             outputs,
         });
         if let Some(k) = key {
@@ -187,7 +193,7 @@ impl Builder {
     }
 
     pub fn not(&mut self, a: NetId) -> NetId {
-        self.op(Kind::Unary(UnOp::Not), vec![a], ElemType::Bool).0
+        self.op(Kind::Unary(UnOp::Not), &[a], ElemType::Bool).0
     }
 
     pub fn and(&mut self, a: NetId, b: NetId) -> NetId {
@@ -201,8 +207,7 @@ impl Builder {
             return self.bool(false);
         }
         let (a, b) = if a <= b { (a, b) } else { (b, a) };
-        self.op(Kind::Binary(BinOp::And), vec![a, b], ElemType::Bool)
-            .0
+        self.op(Kind::Binary(BinOp::And), &[a, b], ElemType::Bool).0
     }
 
     pub fn or(&mut self, a: NetId, b: NetId) -> NetId {
@@ -216,8 +221,7 @@ impl Builder {
             return self.bool(true);
         }
         let (a, b) = if a <= b { (a, b) } else { (b, a) };
-        self.op(Kind::Binary(BinOp::Or), vec![a, b], ElemType::Bool)
-            .0
+        self.op(Kind::Binary(BinOp::Or), &[a, b], ElemType::Bool).0
     }
 
     /// `c ? a : b`.
@@ -229,7 +233,7 @@ impl Builder {
             return b;
         }
         let t = self.ty(a);
-        self.op(Kind::Switch, vec![c, a, b], t).0
+        self.op(Kind::Switch, &[c, a, b], t).0
     }
 
     /// Removes the components that drive nothing an output, register or
@@ -271,18 +275,22 @@ impl Builder {
             }
         }
         let mut renum: Vec<u32> = vec![u32::MAX; c.nets.len()];
-        let mut nets = Vec::new();
-        let mut components = Vec::new();
-        for (i, comp) in c.components.into_iter().enumerate() {
+        let mut nets = Vec::with_capacity(c.nets.len());
+        // (Compacted in place: no second array of components.)
+        let mut components = c.components;
+        let mut kept = 0;
+        for i in 0..components.len() {
             if !live[i] {
                 continue;
             }
-            for o in &comp.outputs {
+            for o in &components[i].outputs {
                 renum[o.index()] = nets.len() as u32;
                 nets.push(c.nets[o.index()]);
             }
-            components.push(comp);
+            components.swap(kept, i);
+            kept += 1;
         }
+        components.truncate(kept);
         for comp in &mut components {
             for n in comp.inputs.iter_mut().chain(comp.outputs.iter_mut()) {
                 *n = NetId(renum[n.index()]);

@@ -79,6 +79,12 @@ pub enum Kind {
     Convert,
     /// A standard function of `stc_values` on A1..An.
     Call(Intrinsic),
+    /// A part of a bit string (`x.3`, `w.%B1`): X1 is the `bits` bits of A1
+    /// from bit `pos · bits` up (a BOOL when `bits` is 1).
+    PartGet { bits: u32, pos: u32 },
+    /// The bit string A1 with that part replaced by A2 (the assignment
+    /// `x.3 := b`, `w.%B1 := v`).
+    PartSet { bits: u32, pos: u32 },
 }
 
 impl Kind {
@@ -92,12 +98,18 @@ impl Kind {
     }
 }
 
+/// The input pins of a component: held inline up to three (almost every
+/// component), so that a component costs no allocation of its own.
+pub type Pins = smallvec::SmallVec<[NetId; 3]>;
+/// The output pins: X1, and F1 for a component that may fault.
+pub type Outs = smallvec::SmallVec<[NetId; 2]>;
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct Component {
     pub kind: Kind,
-    pub inputs: Vec<NetId>,
+    pub inputs: Pins,
     /// X1, then F1 (the fault code, USINT) for a component that may fault.
-    pub outputs: Vec<NetId>,
+    pub outputs: Outs,
 }
 
 /// A whole circuit.
@@ -180,6 +192,26 @@ pub fn eval(
             _ => (default_of(out_ty), Some(FaultKind::InvalidCode)),
         },
         Kind::Call(f) => lift(stc_values::call(*f, in_tys, ins, out_ty)),
+        Kind::PartGet { bits, pos } => match ins {
+            [w] => match w.as_int() {
+                Some(w) => (part_get(w, *bits, *pos, out_ty), None),
+                None => (default_of(out_ty), Some(FaultKind::InvalidCode)),
+            },
+            _ => (default_of(out_ty), Some(FaultKind::InvalidCode)),
+        },
+        Kind::PartSet { bits, pos } => match ins {
+            [w, v] => {
+                let v = match v {
+                    Value::Bool(b) => Some(i128::from(*b)),
+                    v => v.as_int(),
+                };
+                match (w.as_int(), v) {
+                    (Some(w), Some(v)) => (part_set(w, v, *bits, *pos, out_ty), None),
+                    _ => (default_of(out_ty), Some(FaultKind::InvalidCode)),
+                }
+            }
+            _ => (default_of(out_ty), Some(FaultKind::InvalidCode)),
+        },
         Kind::Input { .. }
         | Kind::Clock
         | Kind::Const(_)
@@ -187,6 +219,34 @@ pub fn eval(
         | Kind::Output { .. }
         | Kind::Fault { .. } => (default_of(out_ty), Some(FaultKind::InvalidCode)),
     }
+}
+
+/// The mask of a part of `bits` bits (at most 64).
+fn part_mask(bits: u32) -> u128 {
+    if bits >= 64 {
+        u128::from(u64::MAX)
+    } else {
+        (1u128 << bits) - 1
+    }
+}
+
+/// Bits `pos · bits ..` of the word `w`, as a value of type `t`.
+fn part_get(w: i128, bits: u32, pos: u32, t: ElemType) -> Value {
+    let shift = bits.saturating_mul(pos).min(127);
+    let raw = ((w as u128) >> shift) & part_mask(bits);
+    if t == ElemType::Bool {
+        Value::Bool(raw != 0)
+    } else {
+        Value::Int(stc_values::wrap(t, raw as i128))
+    }
+}
+
+/// The word `w` (of type `t`) with bits `pos · bits ..` replaced by `v`.
+fn part_set(w: i128, v: i128, bits: u32, pos: u32, t: ElemType) -> Value {
+    let shift = bits.saturating_mul(pos).min(127);
+    let mask = part_mask(bits) << shift;
+    let raw = ((w as u128) & !mask) | (((v as u128) << shift) & mask);
+    Value::Int(stc_values::wrap(t, raw as i128))
 }
 
 /// Whether a component may fault on some input values (then it has an F1
@@ -246,5 +306,52 @@ pub fn may_fault(kind: &Kind, in_tys: &[ElemType], out_ty: ElemType) -> bool {
             }
         }
         _ => false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn get(w: i128, bits: u32, pos: u32, t: ElemType) -> Value {
+        let k = Kind::PartGet { bits, pos };
+        eval(&k, &[ElemType::Lword], &[Value::Int(w)], t).0
+    }
+
+    fn set(w: i128, v: Value, bits: u32, pos: u32, t: ElemType) -> Value {
+        let k = Kind::PartSet { bits, pos };
+        eval(&k, &[t, ElemType::Bool], &[Value::Int(w), v], t).0
+    }
+
+    #[test]
+    fn parts_of_bit_strings_are_read_and_replaced() {
+        assert_eq!(get(0x00F0, 1, 4, ElemType::Bool), Value::Bool(true));
+        assert_eq!(get(0x00F0, 1, 3, ElemType::Bool), Value::Bool(false));
+        assert_eq!(get(0xABCD, 8, 1, ElemType::Byte), Value::Int(0xAB));
+        let top = 1i128 << 63;
+        assert_eq!(get(top, 1, 63, ElemType::Bool), Value::Bool(true));
+        assert_eq!(get(top | 5, 32, 0, ElemType::Dword), Value::Int(5));
+        // A write keeps the other bits and takes the part's low bits.
+        assert_eq!(
+            set(0x00F0, Value::Bool(true), 1, 0, ElemType::Word),
+            Value::Int(0x00F1)
+        );
+        assert_eq!(
+            set(0xFFFF, Value::Int(0x1AB), 8, 1, ElemType::Word),
+            Value::Int(0xABFF)
+        );
+        assert_eq!(
+            set(0, Value::Bool(true), 1, 63, ElemType::Lword),
+            Value::Int(top)
+        );
+        // A signed word stays in its type's range.
+        assert_eq!(
+            set(-1, Value::Bool(false), 1, 15, ElemType::Int),
+            Value::Int(32767)
+        );
+        assert_eq!(
+            set(0, Value::Bool(true), 1, 15, ElemType::Int),
+            Value::Int(-32768)
+        );
     }
 }

@@ -26,7 +26,7 @@ pub mod xml;
 
 pub use circuit::{Circuit, Component, Kind, NetId};
 pub use sim::{Fault, Simulator, StepError};
-pub use translate::{limits, translate, Refusal};
+pub use translate::{enable_name, limits, translate, translate_config, Refusal};
 
 /// The XML Schema of the dialect stc writes.
 pub const XSD: &str = include_str!("../netlist.xsd");
@@ -60,5 +60,52 @@ pub fn choose_program(m: &stc_ir::Module, name: Option<&str>) -> Result<stc_sema
                     .join(", ")
             )),
         },
+    }
+}
+
+/// What a netlist is made of: one PROGRAM, or a CONFIGURATION (an index
+/// into the module's configurations).
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Unit {
+    Program(stc_sema::PouId),
+    Config(usize),
+}
+
+/// The unit `stc run` would run (spec/cli.md): the configuration named
+/// `config`, else the program named `program`, else the only
+/// configuration, else the only program. `Err` says why there is none to
+/// choose.
+pub fn choose(
+    m: &stc_ir::Module,
+    config: Option<&str>,
+    program: Option<&str>,
+) -> Result<Unit, String> {
+    let spelled = |c: &stc_sema::ConfigDef| m.spelled(c.name, c.span).to_string();
+    if let Some(n) = config {
+        return m
+            .configs
+            .iter()
+            .position(|c| spelled(c).eq_ignore_ascii_case(n))
+            .map(Unit::Config)
+            .ok_or_else(|| format!("no CONFIGURATION named `{n}`"));
+    }
+    if program.is_some() {
+        return choose_program(m, program).map(Unit::Program);
+    }
+    match m.configs.len() {
+        0 => choose_program(m, None).map(Unit::Program),
+        1 => Ok(Unit::Config(0)),
+        _ => Err(format!(
+            "several CONFIGURATIONs: choose one with --config ({})",
+            m.configs.iter().map(spelled).collect::<Vec<_>>().join(", ")
+        )),
+    }
+}
+
+/// Translates a unit (see [`translate`] and [`translate_config`]).
+pub fn translate_unit(m: &stc_ir::Module, unit: Unit) -> Result<Circuit, Box<Refusal>> {
+    match unit {
+        Unit::Program(p) => translate(m, p),
+        Unit::Config(c) => translate_config(m, c),
     }
 }

@@ -19,6 +19,8 @@ pub const INDEX: &str = "GF_INDEX";
 pub const RANGE: &str = "LC_RANGE";
 pub const CONVERT: &str = "CV_CONVERT";
 pub const CALL: &str = "FN_CALL";
+pub const PART_GET: &str = "BS_PART-GET";
+pub const PART_SET: &str = "BS_PART-SET";
 
 /// The binary operators and their component names.
 pub const BINARY: &[(BinOp, &str)] = &[
@@ -152,6 +154,8 @@ pub fn name_of(k: &Kind) -> &'static str {
             .unwrap_or("AF_?"),
         Kind::Convert => CONVERT,
         Kind::Call(_) => CALL,
+        Kind::PartGet { .. } => PART_GET,
+        Kind::PartSet { .. } => PART_SET,
     }
 }
 

@@ -254,7 +254,7 @@ mod tests {
                 init: Value::Int(1),
                 aliases: vec![],
             },
-            vec![],
+            &[],
             Some(ElemType::Dint),
         );
         let q = b.add(
@@ -263,13 +263,13 @@ mod tests {
                 init: Value::Int(0),
                 aliases: vec![],
             },
-            vec![],
+            &[],
             Some(ElemType::Dint),
         );
         let reg = b.components() - 1;
-        let (d, _) = b.op(Kind::Binary(BinOp::Add), vec![q, step], ElemType::Dint);
-        b.c.components[reg].inputs = vec![d];
-        let (_, f) = b.op(Kind::Binary(BinOp::Div), vec![q, step], ElemType::Dint);
+        let (d, _) = b.op(Kind::Binary(BinOp::Add), &[q, step], ElemType::Dint);
+        b.c.components[reg].inputs = crate::circuit::Pins::from_slice(&[d]);
+        let (_, f) = b.op(Kind::Binary(BinOp::Div), &[q, step], ElemType::Dint);
         let on = b.bool(true);
         b.add(
             Kind::Fault {
@@ -279,10 +279,10 @@ mod tests {
                 line: 3,
                 col: 1,
             },
-            vec![f.unwrap(), on],
+            &[f.unwrap(), on],
             None,
         );
-        b.add(Kind::Output { name: "C.n".into() }, vec![d], None);
+        b.add(Kind::Output { name: "C.n".into() }, &[d], None);
         b.finish()
     }
 

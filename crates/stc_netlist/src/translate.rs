@@ -56,6 +56,9 @@ pub mod limits {
     pub const LOOP_ITERATIONS: usize = 4096;
     /// Elements of an array that one run-time index may select among.
     pub const INDEXED_ELEMENTS: usize = 1024;
+    /// Function block instances among which one call chosen at run time
+    /// (`fbs[i](...)`) is inlined.
+    pub const INDEXED_INSTANCES: usize = 64;
     /// Components of a whole circuit.
     pub const COMPONENTS: usize = 1_000_000;
 }
@@ -104,13 +107,82 @@ impl Refusal {
 
 type R<T> = Result<T, Box<Refusal>>;
 
+/// The value of an index expression and its position (line, column).
+type IndexVal = (NetId, Option<(u32, u32)>);
+
 /// Translates the PROGRAM `program` of `m`.
 pub fn translate(m: &Module, program: PouId) -> Result<Circuit, Box<Refusal>> {
     let pou = m.pou(program);
     let name = m.spelled(pou.name, pou.name_span).to_string();
     let mut t = Tr::new(m, name.clone());
-    t.program(program, &name)?;
+    t.program(program, &name, None)?;
+    t.commit();
     Ok(t.b.finish())
+}
+
+/// The name of the enable input of a program instance of a configuration
+/// (`Fast$EN`): TRUE in the step that runs that instance. (A `$` name is
+/// no run-time path, as a hidden variable's.)
+pub fn enable_name(instance: &str) -> String {
+    format!("{instance}$EN")
+}
+
+/// Translates the configuration `config` (an index into `m.configs`): every
+/// program instance of every resource, in declaration order, each under its
+/// enable input ([`enable_name`]); the configuration's globals (its
+/// located ones are its I/O modules) and the instances' connections
+/// (docs/netlist.md, "Configurations").
+pub fn translate_config(m: &Module, config: usize) -> Result<Circuit, Box<Refusal>> {
+    let Some(conf) = m.configs.get(config) else {
+        return Err(Box::new(Refusal {
+            code: Code::E1105,
+            message: format!("no configuration number {config}"),
+            pou_span: Span::new(0, 0),
+            line: 0,
+            col: 0,
+        }));
+    };
+    let name = m.spelled(conf.name, conf.span).to_string();
+    let mut t = Tr::new(m, name);
+    for g in &conf.globals {
+        t.global(*g);
+    }
+    for (r, res) in conf.resources.iter().enumerate() {
+        for g in &res.globals {
+            t.global(*g);
+        }
+        for inst in &res.programs {
+            let iname = m.spelled(inst.name, inst.name_span).to_string();
+            let en = t.b.add(
+                Kind::Input {
+                    name: enable_name(&iname),
+                    init: Value::Bool(false),
+                    aliases: Vec::new(),
+                },
+                &[],
+                Some(ElemType::Bool),
+            );
+            let run = Run {
+                enable: en,
+                ctx: (config, r),
+                inputs: &inst.inputs,
+                outputs: &inst.outputs,
+            };
+            t.program(inst.pou, &iname, Some(run))?;
+        }
+    }
+    t.commit();
+    Ok(t.b.finish())
+}
+
+/// How a program instance of a configuration runs: under its enable, with
+/// the configuration's globals and its connections.
+struct Run<'a> {
+    enable: NetId,
+    /// (configuration, resource), to bind its externals.
+    ctx: (usize, usize),
+    inputs: &'a [(VarId, stc_sema::DataRef)],
+    outputs: &'a [(VarId, stc_sema::DataRef)],
 }
 
 /// A value: a net, or the values of an aggregate's leaves.
@@ -130,8 +202,11 @@ enum Slot {
     Text,
     /// (Shared, so reading a slot does not copy its children.)
     Agg(std::rc::Rc<[SlotId]>),
-    /// A variable an instance does not hold (a frame variable or a reference).
+    /// A variable an instance does not hold (a frame variable).
     Absent,
+    /// A reference (`REF_TO`, VAR_IN_OUT, the base of a pointer): refused
+    /// when used.
+    Address,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
@@ -160,6 +235,14 @@ enum Loc {
     Dyn {
         idx: NetId,
         elems: Vec<SlotId>,
+    },
+    /// A part of the bit string at `word`: `bits` bits from `pos · bits`,
+    /// of type `ty`.
+    Part {
+        word: Box<Loc>,
+        bits: u32,
+        pos: u32,
+        ty: ElemType,
     },
 }
 
@@ -225,6 +308,9 @@ struct Tr<'m> {
     /// The statement being translated (line, column).
     at: (u32, u32),
     depth: usize,
+    /// The configuration and resource of the program instance being
+    /// translated (`None`: a PROGRAM on its own).
+    ctx: Option<(usize, usize)>,
 }
 
 impl<'m> Tr<'m> {
@@ -249,6 +335,7 @@ impl<'m> Tr<'m> {
             inst_names: FxHashMap::default(),
             at: (0, 0),
             depth: 0,
+            ctx: None,
         }
     }
 
@@ -280,7 +367,7 @@ impl<'m> Tr<'m> {
         let m = self.m;
         match m.types.kind(t) {
             // (A reference has no cells; using one is refused.)
-            TypeKind::Ref(_) | TypeKind::Ptr(_) => self.slot(Slot::Absent),
+            TypeKind::Ref(_) | TypeKind::Ptr(_) => self.slot(Slot::Address),
             TypeKind::Elem(_)
             | TypeKind::Subrange { .. }
             | TypeKind::Enum { .. }
@@ -311,7 +398,7 @@ impl<'m> Tr<'m> {
                                 init: v,
                                 aliases: Vec::new(),
                             },
-                            vec![],
+                            &[],
                             Some(e),
                         );
                         (CellKind::Input, n)
@@ -323,7 +410,7 @@ impl<'m> Tr<'m> {
                                 init: v,
                                 aliases: Vec::new(),
                             },
-                            vec![],
+                            &[],
                             Some(e),
                         );
                         (CellKind::Reg(self.b.components() - 1), n)
@@ -443,7 +530,7 @@ impl<'m> Tr<'m> {
                     self.leaves(*k, out);
                 }
             }
-            Slot::Text | Slot::Absent => {}
+            Slot::Text | Slot::Absent | Slot::Address => {}
         }
     }
 
@@ -538,7 +625,7 @@ impl<'m> Tr<'m> {
             },
             Storage::Frame => Bind::Slot(self.build(var.ty, "", var.init.as_ref(), Kind2::Temp)),
             Storage::Ref if var.section == Section::External => {
-                match m.bind_global(var.name, var.ty, None) {
+                match m.bind_global(var.name, var.ty, self.ctx) {
                     Some(g) => Bind::Slot(self.global(g)),
                     None => {
                         let key = (p.0, v.0);
@@ -562,9 +649,10 @@ impl<'m> Tr<'m> {
 
     // ---- the program ------------------------------------------------------
 
-    fn program(&mut self, p: PouId, name: &str) -> R<()> {
+    fn program(&mut self, p: PouId, name: &str, run: Option<Run>) -> R<()> {
         let m = self.m;
         let pou = m.pou(p);
+        self.ctx = run.as_ref().map(|r| r.ctx);
         let mut fr = Frame {
             pou: p,
             binds: Vec::new(),
@@ -585,7 +673,11 @@ impl<'m> Tr<'m> {
                 kids.push(self.slot(Slot::Absent));
                 continue;
             }
-            let kind = if v.section == Section::Input {
+            let i = VarId(kids.len() as u32);
+            let connected = run
+                .as_ref()
+                .is_some_and(|r| r.inputs.iter().any(|(w, _)| *w == i));
+            let kind = if v.section == Section::Input && !connected {
                 Kind2::Input
             } else {
                 Kind2::Reg
@@ -632,15 +724,70 @@ impl<'m> Tr<'m> {
             let b = self.bind_var(p, VarId(i as u32), Some(inst), name);
             fr.binds.push(b);
         }
-        self.block(&mut fr, &pou.body)?;
-        let ret = std::mem::take(&mut fr.ret);
-        self.land(0, ret);
-        // Registers take the values at the end of the cycle; output modules
-        // show them.
+        let Some(run) = run else {
+            self.block(&mut fr, &pou.body)?;
+            let ret = std::mem::take(&mut fr.ret);
+            self.land(0, ret);
+            return Ok(());
+        };
+        // An instance of a configuration runs when its enable is TRUE: its
+        // connections are copied in, its body runs, its outputs are copied
+        // out; otherwise every cell keeps its value.
+        let mut body = |t: &mut Self, fr: &mut Frame| -> R<()> {
+            let start = t.journal.len();
+            for (v, src) in run.inputs {
+                let val = t.data_ref(fr, src, m.pou(p).var(*v).ty)?;
+                let Some(slot) = t.child(inst, v.0 as usize) else {
+                    return Err(t.refuse(fr, Code::E1105, "a connected input without storage"));
+                };
+                t.write_slot(fr, slot, val, None)?;
+            }
+            t.block(fr, &pou.body)?;
+            let ret = std::mem::take(&mut fr.ret);
+            t.land(start, ret);
+            for (v, sink) in run.outputs {
+                let Some(slot) = t.child(inst, v.0 as usize) else {
+                    return Err(t.refuse(fr, Code::E1105, "a connected output without storage"));
+                };
+                let val = t.read_slot(fr, slot)?;
+                let target = match sink {
+                    stc_sema::DataRef::Global(g) => t.global(*g),
+                    stc_sema::DataRef::Direct(a) => t.direct(a, m.addr_type(a), None),
+                    stc_sema::DataRef::Const(_) => continue,
+                };
+                t.write_slot(fr, target, val, None)?;
+            }
+            Ok(())
+        };
+        self.branch(&mut fr, run.enable, &mut body, &mut |_, _| Ok(()))
+    }
+
+    /// The value of a configuration's data reference (a connection's
+    /// source).
+    fn data_ref(&mut self, fr: &Frame, d: &stc_sema::DataRef, ty: TypeId) -> R<Val> {
+        match d {
+            stc_sema::DataRef::Global(g) => {
+                let s = self.global(*g);
+                self.read_slot(fr, s)
+            }
+            stc_sema::DataRef::Direct(a) => {
+                let s = self.direct(a, self.m.addr_type(a), None);
+                self.read_slot(fr, s)
+            }
+            stc_sema::DataRef::Const(v) => {
+                let t = self.elem(fr, ty)?;
+                Ok(Val::S(self.b.konst(t, v.clone())))
+            }
+        }
+    }
+
+    /// Registers take the values at the end of the cycle; output modules
+    /// show them.
+    fn commit(&mut self) {
         for c in 0..self.cells.len() {
             let v = self.env[c];
             if let CellKind::Reg(comp) = self.cells[c].kind {
-                self.b.c.components[comp].inputs = vec![v];
+                self.b.c.components[comp].inputs = crate::circuit::Pins::from_slice(&[v]);
             }
         }
         let mut shown = Vec::new();
@@ -656,9 +803,8 @@ impl<'m> Tr<'m> {
             }
         }
         for (name, v) in shown {
-            self.b.add(Kind::Output { name }, vec![v], None);
+            self.b.add(Kind::Output { name }, &[v], None);
         }
-        Ok(())
     }
 
     fn has_text(&self, s: SlotId) -> bool {
@@ -700,8 +846,17 @@ impl<'m> Tr<'m> {
         self.at = (s.line, s.col);
         match &s.kind {
             StmtKind::Assign { place, value } => {
-                let v = self.expr(fr, value)?;
-                let loc = self.place(fr, place)?;
+                // As the VM: the index expressions first; the element is
+                // checked after the value only when the value calls
+                // nothing and the place has a single index.
+                let pre = self.place_indices(fr, place)?;
+                let (loc, v) = if !stc_ir::visit::has_call(value) && single_index(place) {
+                    let v = self.expr(fr, value)?;
+                    (self.place_at(fr, place, &pre)?, v)
+                } else {
+                    let loc = self.place_at(fr, place, &pre)?;
+                    (loc, self.expr(fr, value)?)
+                };
                 self.store(fr, &loc, v)?;
             }
             StmtKind::CallFb {
@@ -712,12 +867,19 @@ impl<'m> Tr<'m> {
                 outputs,
             } => {
                 let loc = self.place(fr, instance)?;
-                let Loc::Fixed(inst) = loc else {
-                    return Err(self.refuse(
-                        fr,
-                        Code::E1103,
-                        "a call of a function block instance chosen by a run-time index",
-                    ));
+                let inst = match loc {
+                    Loc::Fixed(inst) => inst,
+                    Loc::Dyn { idx, elems } => {
+                        return self
+                            .call_fb_chosen(fr, s, *fb, idx, &elems, inputs, inouts, outputs)
+                    }
+                    Loc::Part { .. } => {
+                        return Err(self.refuse(
+                            fr,
+                            Code::E1105,
+                            "a call of a part of a bit string",
+                        ))
+                    }
                 };
                 self.call_fb(fr, *fb, inst, inputs, inouts)?;
                 self.at = (s.line, s.col);
@@ -930,18 +1092,18 @@ impl<'m> Tr<'m> {
             let r = if lo == hi {
                 let k = self.b.konst(t, Value::Int(lo));
                 self.b
-                    .op(Kind::Binary(BinOp::Eq), vec![sel, k], ElemType::Bool)
+                    .op(Kind::Binary(BinOp::Eq), &[sel, k], ElemType::Bool)
                     .0
             } else {
                 let kl = self.b.konst(t, Value::Int(lo));
                 let kh = self.b.konst(t, Value::Int(hi));
                 let ge = self
                     .b
-                    .op(Kind::Binary(BinOp::Ge), vec![sel, kl], ElemType::Bool)
+                    .op(Kind::Binary(BinOp::Ge), &[sel, kl], ElemType::Bool)
                     .0;
                 let le = self
                     .b
-                    .op(Kind::Binary(BinOp::Le), vec![sel, kh], ElemType::Bool)
+                    .op(Kind::Binary(BinOp::Le), &[sel, kh], ElemType::Bool)
                     .0;
                 self.b.and(ge, le)
             };
@@ -1014,7 +1176,7 @@ impl<'m> Tr<'m> {
             match v {
                 Val::S(n) => {
                     let t = self.b.ty(n);
-                    Val::S(self.b.op(Kind::Unary(stc_values::UnOp::Not), vec![n], t).0)
+                    Val::S(self.b.op(Kind::Unary(stc_values::UnOp::Not), &[n], t).0)
                 }
                 Val::A(_) => {
                     return Err(self.refuse(fr, Code::E1105, "a negated structured output"))
@@ -1038,7 +1200,7 @@ impl<'m> Tr<'m> {
                 line: self.at.0,
                 col: self.at.1,
             },
-            vec![code, alive],
+            &[code, alive],
             None,
         );
     }
@@ -1051,7 +1213,7 @@ impl<'m> Tr<'m> {
         }
     }
 
-    fn op(&mut self, fr: &Frame, kind: Kind, ins: Vec<NetId>, out: ElemType) -> NetId {
+    fn op(&mut self, fr: &Frame, kind: Kind, ins: &[NetId], out: ElemType) -> NetId {
         let (x, f) = self.b.op(kind, ins, out);
         self.check(fr, f);
         x
@@ -1112,6 +1274,61 @@ impl<'m> Tr<'m> {
         self.land(callee.start, ret);
         self.at = at;
         self.depth -= 1;
+        Ok(())
+    }
+
+    /// A call of the instance `elems[idx]` chosen at run time
+    /// (`fbs[i](...)`): the body of each candidate inlined under
+    /// `idx = k`, like the arms of a CASE, and the outputs selected from
+    /// the chosen one.
+    #[allow(clippy::too_many_arguments)]
+    fn call_fb_chosen(
+        &mut self,
+        fr: &mut Frame,
+        s: &Stmt,
+        fb: PouId,
+        idx: NetId,
+        elems: &[SlotId],
+        inputs: &[(VarId, Expr)],
+        inouts: &[(VarId, Place)],
+        outputs: &[Output],
+    ) -> R<()> {
+        if elems.len() > limits::INDEXED_INSTANCES {
+            return Err(self.refuse(
+                fr,
+                Code::E1103,
+                format!(
+                    "a call of a function block instance chosen at run time among {} (a circuit inlines at most {} candidates)",
+                    elems.len(),
+                    limits::INDEXED_INSTANCES
+                ),
+            ));
+        }
+        for (k, &inst) in elems.iter().enumerate() {
+            let kn = self.b.konst(ElemType::Lint, Value::Int(k as i128));
+            let eq = self
+                .b
+                .op(Kind::Binary(BinOp::Eq), &[idx, kn], ElemType::Bool)
+                .0;
+            self.branch(
+                fr,
+                eq,
+                &mut |t, fr| t.call_fb(fr, fb, inst, inputs, inouts),
+                &mut |_, _| Ok(()),
+            )?;
+            self.at = (s.line, s.col);
+        }
+        for o in outputs {
+            let mut picks = Vec::with_capacity(elems.len());
+            for &e in elems {
+                match self.child(e, o.var.0 as usize) {
+                    Some(c) => picks.push(c),
+                    None => return Err(self.refuse(fr, Code::E1105, "an output without storage")),
+                }
+            }
+            let v = self.read(fr, &Loc::Dyn { idx, elems: picks })?;
+            self.output(fr, o, v)?;
+        }
         Ok(())
     }
 
@@ -1187,6 +1404,31 @@ impl<'m> Tr<'m> {
     // ---- places -----------------------------------------------------------
 
     fn place(&mut self, fr: &mut Frame, p: &Place) -> R<Loc> {
+        let pre = self.place_indices(fr, p)?;
+        self.place_at(fr, p, &pre)
+    }
+
+    /// The values of all the index expressions of a place, in order: they
+    /// are all computed before any of them is checked against its bounds
+    /// (as on every back end).
+    fn place_indices(&mut self, fr: &mut Frame, p: &Place) -> R<Vec<IndexVal>> {
+        let mut out = Vec::new();
+        for proj in &p.proj {
+            if let Proj::Index(list) = proj {
+                for (e, _, _) in list {
+                    // A checked index reports its own position.
+                    let (at, e) = e.located();
+                    out.push((self.scalar_net(fr, e)?, at));
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// The place `p` whose index values are `pre` (see
+    /// [`Self::place_indices`]): the indices checked in order.
+    fn place_at(&mut self, fr: &mut Frame, p: &Place, pre: &[IndexVal]) -> R<Loc> {
+        let mut next = 0usize;
         let mut loc = match &p.root {
             Root::Var(v) => match fr.binds.get(v.0 as usize).cloned() {
                 Some(Bind::Slot(s)) => Loc::Fixed(s),
@@ -1200,7 +1442,11 @@ impl<'m> Tr<'m> {
                 }
             },
             Root::Deref(_) => {
-                return Err(self.refuse(fr, Code::E1105, "a dereference (`r^`)"));
+                return Err(self.refuse(
+                    fr,
+                    Code::E1105,
+                    "a dereference (`p^` of a pointer or a reference): a circuit has no memory addresses",
+                ));
             }
             Root::This => {
                 return Err(self.refuse(fr, Code::E1105, "`THIS` (a method call)"));
@@ -1212,14 +1458,17 @@ impl<'m> Tr<'m> {
             loc = match proj {
                 Proj::Field(i) => self.project(fr, loc, *i as usize)?,
                 Proj::FbVar(_, v) => self.project(fr, loc, v.0 as usize)?,
-                Proj::Index(list) => self.index(fr, loc, list)?,
-                Proj::Part(..) => {
-                    return Err(self.refuse(
-                        fr,
-                        Code::E1105,
-                        "access to a part of a bit string (`x.3`, `w.%B1`): not in the component library yet",
-                    ))
+                Proj::Index(list) => {
+                    let vals = pre.get(next..next + list.len()).unwrap_or(&[]);
+                    next += list.len();
+                    self.index(fr, loc, list, vals)?
                 }
+                Proj::Part(size, pos) => Loc::Part {
+                    word: Box::new(loc),
+                    bits: size.bits(),
+                    pos: *pos,
+                    ty: self.elem(fr, p.ty)?,
+                },
             };
         }
         Ok(loc)
@@ -1228,6 +1477,7 @@ impl<'m> Tr<'m> {
     fn project(&mut self, fr: &Frame, loc: Loc, i: usize) -> R<Loc> {
         let bad = || "a member without storage".to_string();
         Ok(match loc {
+            Loc::Part { .. } => return Err(self.refuse(fr, Code::E1105, bad())),
             Loc::Fixed(s) => match self.child(s, i) {
                 Some(c) => Loc::Fixed(c),
                 None => return Err(self.refuse(fr, Code::E1105, bad())),
@@ -1245,17 +1495,25 @@ impl<'m> Tr<'m> {
         })
     }
 
-    fn index(&mut self, fr: &mut Frame, loc: Loc, list: &[(Expr, i128, i128)]) -> R<Loc> {
+    fn index(
+        &mut self,
+        fr: &mut Frame,
+        loc: Loc,
+        list: &[(Expr, i128, i128)],
+        vals: &[IndexVal],
+    ) -> R<Loc> {
+        if vals.len() != list.len() {
+            return Err(self.refuse(fr, Code::E1105, "an index without its value"));
+        }
         let mut nets = Vec::with_capacity(list.len());
-        for (e, lo, hi) in list {
-            // A checked index reports its own position.
-            let (at, e) = e.located();
-            let n = self.scalar_net(fr, e)?;
+        for ((_, lo, hi), &(n, at)) in list.iter().zip(vals) {
             // A run-time index is checked against its bounds (a fault
-            // site); a constant one was checked by the analyser.
+            // site), and so is a constant one outside them (folded from an
+            // expression the analyser does not evaluate, `a[LIMIT(...)]`:
+            // the cycle faults there when the statement is reached).
             let n = match self.b.known(n).and_then(Value::as_int) {
-                Some(_) => n,
-                None => {
+                Some(i) if (*lo..=*hi).contains(&i) => n,
+                _ => {
                     let t = self.b.ty(n);
                     let outer = self.at;
                     self.at = at.unwrap_or(outer);
@@ -1266,7 +1524,7 @@ impl<'m> Tr<'m> {
                             hi: *hi,
                             fault: FaultKind::IndexOutOfBounds,
                         },
-                        vec![n],
+                        &[n],
                         t,
                     );
                     self.at = outer;
@@ -1279,15 +1537,17 @@ impl<'m> Tr<'m> {
             .iter()
             .map(|n| self.b.known(*n).and_then(Value::as_int))
             .collect();
-        let Loc::Fixed(arr) = loc else {
-            return Err(self.refuse(
-                fr,
-                Code::E1103,
-                "an array element chosen by a run-time index inside another one chosen at run time",
-            ));
+        // The arrays the index applies to: one, or one per element of an
+        // outer array chosen at run time (`a[i][j]`, `a[i].b[j]`).
+        let (outer, arrays) = match loc {
+            Loc::Fixed(arr) => (None, vec![arr]),
+            Loc::Dyn { idx, elems } => (Some(idx), elems),
+            Loc::Part { .. } => {
+                return Err(self.refuse(fr, Code::E1105, "an index into a part of a bit string"))
+            }
         };
-        let count = match &self.slots[arr.0 as usize] {
-            Slot::Agg(k) => k.len(),
+        let count = match arrays.first().map(|a| &self.slots[a.0 as usize]) {
+            Some(Slot::Agg(k)) => k.len(),
             _ => 0,
         };
         if let Some(cs) = consts {
@@ -1295,41 +1555,79 @@ impl<'m> Tr<'m> {
             for ((_, lo, hi), i) in list.iter().zip(cs) {
                 off = off * (hi - lo + 1) + (i - lo);
             }
-            return match usize::try_from(off).ok().and_then(|o| self.child(arr, o)) {
-                Some(c) => Ok(Loc::Fixed(c)),
-                None => Err(self.refuse(fr, Code::E1105, "a constant index outside its array")),
-            };
+            let mut picked = Vec::with_capacity(arrays.len());
+            for arr in &arrays {
+                match usize::try_from(off).ok().and_then(|o| self.child(*arr, o)) {
+                    Some(c) => picked.push(c),
+                    None => {
+                        return Err(self.refuse(
+                            fr,
+                            Code::E1105,
+                            "a constant index outside its array",
+                        ))
+                    }
+                }
+            }
+            return Ok(match outer {
+                None => Loc::Fixed(picked[0]),
+                Some(idx) => Loc::Dyn { idx, elems: picked },
+            });
         }
-        if count > limits::INDEXED_ELEMENTS {
+        let total = count.saturating_mul(arrays.len());
+        if total > limits::INDEXED_ELEMENTS {
             return Err(self.refuse(
                 fr,
                 Code::E1103,
-                format!(
-                    "an array of {count} elements indexed at run time (a circuit selects among at most {})",
-                    limits::INDEXED_ELEMENTS
-                ),
+                if outer.is_some() {
+                    format!(
+                        "array elements chosen at run time inside others chosen at run time: {total} elements to select among (a circuit selects among at most {})",
+                        limits::INDEXED_ELEMENTS
+                    )
+                } else {
+                    format!(
+                        "an array of {count} elements indexed at run time (a circuit selects among at most {})",
+                        limits::INDEXED_ELEMENTS
+                    )
+                },
             ));
         }
-        // The zero-based offset, in LINT.
+        // The zero-based offset, in LINT (after the outer one's: the
+        // elements of every inner array in order).
         let lint = ElemType::Lint;
-        let mut off = self.b.konst(lint, Value::Int(0));
+        let mut off = match outer {
+            Some(idx) => idx,
+            None => self.b.konst(lint, Value::Int(0)),
+        };
+        let mut first = outer.is_none();
         for ((_, lo, hi), n) in list.iter().zip(nets) {
             let w = self.b.konst(lint, Value::Int(hi - lo + 1));
-            off = self.b.op(Kind::Binary(BinOp::Mul), vec![off, w], lint).0;
+            if !first {
+                off = self.b.op(Kind::Binary(BinOp::Mul), &[off, w], lint).0;
+            }
+            first = false;
             let t = self.b.ty(n);
             let n = if t == lint {
                 n
             } else {
-                self.b.op(Kind::Convert, vec![n], lint).0
+                self.b.op(Kind::Convert, &[n], lint).0
             };
             let l = self.b.konst(lint, Value::Int(*lo));
-            let d = self.b.op(Kind::Binary(BinOp::Sub), vec![n, l], lint).0;
-            off = self.b.op(Kind::Binary(BinOp::Add), vec![off, d], lint).0;
+            let d = self.b.op(Kind::Binary(BinOp::Sub), &[n, l], lint).0;
+            off = self.b.op(Kind::Binary(BinOp::Add), &[off, d], lint).0;
         }
-        let elems = match &self.slots[arr.0 as usize] {
-            Slot::Agg(k) => k.to_vec(),
-            _ => Vec::new(),
-        };
+        let mut elems = Vec::with_capacity(total);
+        for arr in &arrays {
+            match &self.slots[arr.0 as usize] {
+                Slot::Agg(k) if k.len() == count => elems.extend(k.iter().copied()),
+                _ => {
+                    return Err(self.refuse(
+                        fr,
+                        Code::E1105,
+                        "arrays of different shapes chosen at run time",
+                    ))
+                }
+            }
+        }
         Ok(Loc::Dyn { idx: off, elems })
     }
 
@@ -1351,11 +1649,28 @@ impl<'m> Tr<'m> {
             Slot::Absent => {
                 Err(self.refuse(fr, Code::E1105, "a variable without storage in a circuit"))
             }
+            Slot::Address => Err(self.refuse(fr, Code::E1105, NO_ADDRESSES)),
         }
     }
 
     fn read(&mut self, fr: &Frame, loc: &Loc) -> R<Val> {
         match loc {
+            Loc::Part {
+                word,
+                bits,
+                pos,
+                ty,
+            } => {
+                let w = self.read(fr, word)?;
+                let Val::S(w) = w else {
+                    return Err(self.refuse(fr, Code::E1105, "a part of a structured value"));
+                };
+                let kind = Kind::PartGet {
+                    bits: *bits,
+                    pos: *pos,
+                };
+                Ok(Val::S(self.b.op(kind, &[w], *ty).0))
+            }
             Loc::Fixed(s) => self.read_slot(fr, *s),
             Loc::Dyn { idx, elems } => {
                 let mut vals = Vec::with_capacity(elems.len());
@@ -1393,7 +1708,7 @@ impl<'m> Tr<'m> {
                         ins.push(*n);
                     }
                 }
-                Val::S(self.b.op(Kind::Index { lo: 0 }, ins, t).0)
+                Val::S(self.b.op(Kind::Index { lo: 0 }, &ins, t).0)
             }
             None => Val::A(vec![]),
         }
@@ -1401,13 +1716,31 @@ impl<'m> Tr<'m> {
 
     fn store(&mut self, fr: &Frame, loc: &Loc, v: Val) -> R<()> {
         match loc {
+            Loc::Part {
+                word,
+                bits,
+                pos,
+                ty,
+            } => {
+                let (Val::S(w), Val::S(v)) = (self.read(fr, word)?, v) else {
+                    return Err(self.refuse(fr, Code::E1105, "a part of a structured value"));
+                };
+                let v = self.fit(v, *ty);
+                let t = self.b.ty(w);
+                let kind = Kind::PartSet {
+                    bits: *bits,
+                    pos: *pos,
+                };
+                let n = self.b.op(kind, &[w, v], t).0;
+                self.store(fr, word, Val::S(n))
+            }
             Loc::Fixed(s) => self.write_slot(fr, *s, v, None),
             Loc::Dyn { idx, elems } => {
                 for (k, e) in elems.iter().enumerate() {
                     let kn = self.b.konst(ElemType::Lint, Value::Int(k as i128));
                     let eq = self
                         .b
-                        .op(Kind::Binary(BinOp::Eq), vec![*idx, kn], ElemType::Bool)
+                        .op(Kind::Binary(BinOp::Eq), &[*idx, kn], ElemType::Bool)
                         .0;
                     self.write_slot(fr, *e, v.clone(), Some(eq))?;
                 }
@@ -1447,6 +1780,7 @@ impl<'m> Tr<'m> {
                 Code::E1102,
                 "a STRING or WSTRING variable: a circuit has no strings",
             )),
+            (Slot::Address, _) => Err(self.refuse(fr, Code::E1105, NO_ADDRESSES)),
             _ => Err(self.refuse(
                 fr,
                 Code::E1105,
@@ -1461,7 +1795,7 @@ impl<'m> Tr<'m> {
         if self.b.ty(n) == t {
             n
         } else {
-            self.b.op(Kind::Convert, vec![n], t).0
+            self.b.op(Kind::Convert, &[n], t).0
         }
     }
 
@@ -1483,6 +1817,9 @@ impl<'m> Tr<'m> {
     }
 
     fn elem(&self, fr: &Frame, t: TypeId) -> R<ElemType> {
+        if let Some(why) = self.is_address(t) {
+            return Err(self.refuse(fr, Code::E1105, why));
+        }
         match self.scalar(t) {
             Some(ElemType::String | ElemType::Wstring) => Err(self.refuse(
                 fr,
@@ -1501,7 +1838,11 @@ impl<'m> Tr<'m> {
     fn expr(&mut self, fr: &mut Frame, e: &Expr) -> R<Val> {
         Ok(match &e.kind {
             ExprKind::Ref(_) | ExprKind::Null => {
-                return Err(self.refuse(fr, Code::E1105, "a reference (REF_TO)"));
+                return Err(self.refuse(
+                    fr,
+                    Code::E1105,
+                    "an address (`ADR(x)`, `REF(x)`, `NULL`): a circuit has no memory addresses",
+                ));
             }
             ExprKind::Const(v) => {
                 let t = self.elem(fr, e.ty)?;
@@ -1514,7 +1855,7 @@ impl<'m> Tr<'m> {
             ExprKind::Unary(op, a) => {
                 let t = self.elem(fr, e.ty)?;
                 let a = self.scalar_net(fr, a)?;
-                Val::S(self.op(fr, Kind::Unary(*op), vec![a], t))
+                Val::S(self.op(fr, Kind::Unary(*op), &[a], t))
             }
             ExprKind::Binary(op, a, b) => {
                 let t = self.elem(fr, e.ty)?;
@@ -1522,7 +1863,7 @@ impl<'m> Tr<'m> {
                 self.elem(fr, b.ty)?;
                 let a = self.scalar_net(fr, a)?;
                 let b = self.scalar_net(fr, b)?;
-                Val::S(self.op(fr, Kind::Binary(*op), vec![a, b], t))
+                Val::S(self.op(fr, Kind::Binary(*op), &[a, b], t))
             }
             ExprKind::Convert(a) => {
                 let t = self.elem(fr, e.ty)?;
@@ -1531,7 +1872,7 @@ impl<'m> Tr<'m> {
                 if self.b.ty(a) == t {
                     Val::S(a)
                 } else {
-                    Val::S(self.op(fr, Kind::Convert, vec![a], t))
+                    Val::S(self.op(fr, Kind::Convert, &[a], t))
                 }
             }
             ExprKind::Check { value, lo, hi } => {
@@ -1545,7 +1886,7 @@ impl<'m> Tr<'m> {
                         hi: *hi,
                         fault: FaultKind::SubrangeViolation,
                     },
-                    vec![a],
+                    &[a],
                     t,
                 ))
             }
@@ -1570,11 +1911,11 @@ impl<'m> Tr<'m> {
                     self.elem(fr, a.ty)?;
                     ins.push(self.scalar_net(fr, a)?);
                 }
-                Val::S(self.op(fr, Kind::Call(*func), ins, t))
+                Val::S(self.op(fr, Kind::Call(*func), &ins, t))
             }
             ExprKind::CurTime => {
                 let t = self.elem(fr, e.ty)?;
-                Val::S(self.b.op(Kind::Clock, vec![], t).0)
+                Val::S(self.b.op(Kind::Clock, &[], t).0)
             }
             ExprKind::Located { line, col, expr } => {
                 let outer = std::mem::replace(&mut self.at, (*line, *col));
@@ -1584,6 +1925,41 @@ impl<'m> Tr<'m> {
             }
         })
     }
+}
+
+/// The refusals of pointers and references.
+/// (After the analysis a pointer is a structure holding a reference, so
+/// both are refused where the first reference is met: the column says
+/// which construct it is.)
+const NO_ADDRESSES: &str = "a pointer or a reference (`POINTER TO`, `ADR(x)`, `REF_TO`, `REF(x)`, `p^`): a circuit has no memory addresses";
+
+impl Tr<'_> {
+    /// Whether values of type `t` are addresses: a reference, or a pointer
+    /// (after the analysis the structure `{OBJECT, BASE, OFFSET}` whose
+    /// BASE is a reference, docs/oop.md).
+    fn is_address(&self, t: TypeId) -> Option<&'static str> {
+        match self.m.types.kind(t) {
+            TypeKind::Ref(_) => Some(NO_ADDRESSES),
+            TypeKind::Ptr(_) => Some(NO_ADDRESSES),
+            TypeKind::Struct { fields } => fields
+                .iter()
+                .any(|f| matches!(self.m.types.kind(f.ty), TypeKind::Ref(_)))
+                .then_some(NO_ADDRESSES),
+            _ => None,
+        }
+    }
+}
+
+/// Whether a place has exactly one index (`a[i]`, not `a[i, j]` or
+/// `a[i][j]`) from a variable: the one case where the VM checks the index
+/// after computing the value assigned.
+fn single_index(p: &Place) -> bool {
+    let mut indexes = p.proj.iter().filter_map(|pr| match pr {
+        Proj::Index(i) => Some(i),
+        _ => None,
+    });
+    let one = matches!((indexes.next(), indexes.next()), (Some(i), None) if i.len() == 1);
+    one && !matches!(p.root, Root::Deref(_))
 }
 
 /// A variable's name in paths (a hidden variable gets its role after `$`).

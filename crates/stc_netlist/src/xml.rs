@@ -64,6 +64,9 @@ fn params(k: &Kind) -> Vec<(&'static str, String)> {
             ("FAULT", fault.code().to_string()),
         ],
         Kind::Call(f) => vec![("FUNC", lib::function_name(*f).unwrap_or("?").to_string())],
+        Kind::PartGet { bits, pos } | Kind::PartSet { bits, pos } => {
+            vec![("BITS", bits.to_string()), ("POS", pos.to_string())]
+        }
         Kind::Clock | Kind::Switch | Kind::Binary(_) | Kind::Unary(_) | Kind::Convert => vec![],
     }
 }
@@ -305,8 +308,8 @@ fn build(name: String, insts: Vec<RawInst>) -> Result<Circuit, ReadError> {
         if inputs.iter().enumerate().any(|(j, (k, _))| *k != j + 1) {
             return Err(structure(format!("{}: input pins are not A1..An", inst.id)));
         }
-        let inputs: Vec<NetId> = inputs.into_iter().map(|(_, n)| n).collect();
-        let outputs: Vec<NetId> = outputs.into_iter().map(|(_, n)| n).collect();
+        let inputs: crate::circuit::Pins = inputs.into_iter().map(|(_, n)| n).collect();
+        let outputs: crate::circuit::Outs = outputs.into_iter().map(|(_, n)| n).collect();
         let kind = kind_of(inst, &inputs, &outputs, &nets)?;
         check_arity(inst, &kind, inputs.len(), outputs.len())?;
         comps.push(Component {
@@ -354,6 +357,8 @@ fn check_arity(inst: &RawInst, k: &Kind, ins: usize, outs: usize) -> Result<(), 
         Kind::Binary(_) => (Some(2), &[1, 2]),
         Kind::Unary(_) | Kind::Convert => (Some(1), &[1, 2]),
         Kind::Call(_) => (None, &[1, 2]),
+        Kind::PartGet { .. } => (Some(1), &[1]),
+        Kind::PartSet { .. } => (Some(2), &[1]),
     };
     if want_in.is_some_and(|n| n != ins)
         || !want_out.contains(&outs)
@@ -429,6 +434,23 @@ fn kind_of(
                 .ok_or_else(|| structure(format!("{}: unknown FAULT", inst.id)))?,
         },
         lib::CONVERT => Kind::Convert,
+        lib::PART_GET | lib::PART_SET => {
+            let small = |k: &str| -> Result<u32, ReadError> {
+                u32::try_from(int(k)?)
+                    .ok()
+                    .filter(|v| *v <= 64)
+                    .ok_or_else(|| structure(format!("{}: {k} is out of range", inst.id)))
+            };
+            let (bits, pos) = (small("BITS")?, small("POS")?);
+            if bits == 0 {
+                return Err(structure(format!("{}: BITS is 0", inst.id)));
+            }
+            if name == lib::PART_GET {
+                Kind::PartGet { bits, pos }
+            } else {
+                Kind::PartSet { bits, pos }
+            }
+        }
         lib::CALL => {
             let f = need("FUNC")?;
             let (Some(from), Some(to)) = (in_ty, out_ty) else {
@@ -517,16 +539,16 @@ mod tests {
                 init: Value::Int(3),
                 aliases: vec![],
             },
-            vec![],
+            &[],
             Some(ElemType::Int),
         );
         let one = b.konst(ElemType::Int, Value::Int(1));
         let (s, _) = b.op(
             Kind::Binary(stc_values::BinOp::Add),
-            vec![x, one],
+            &[x, one],
             ElemType::Int,
         );
-        b.add(Kind::Output { name: "M.y".into() }, vec![s], None);
+        b.add(Kind::Output { name: "M.y".into() }, &[s], None);
         let c = b.finish();
         let text = write(&c);
         let back = read(&text).unwrap();

@@ -77,6 +77,8 @@ pub struct Report {
     pub vm: Option<Output>,
     /// The JIT's run (`None`: not tried).
     pub jit: Option<Output>,
+    /// The netlist's run (`stc run --backend netlist`; `None`: not tried).
+    pub netlist: Option<Output>,
     pub c: CSide,
     /// The cycles run, so the reports expected (`--trace`).
     pub cycles: u64,
@@ -84,6 +86,8 @@ pub struct Report {
     pub vm_time: Duration,
     /// Wall time of the JIT side (analysis, compilation, run).
     pub jit_time: Duration,
+    /// Wall time of the netlist side (translation, document, simulation).
+    pub netlist_time: Duration,
     /// Wall time of the C side (analysis, C generation, C compilation,
     /// run).
     pub c_time: Duration,
@@ -99,6 +103,19 @@ impl Report {
     /// Whether the VM run stopped with a run-time fault (exit status 3).
     pub fn vm_faulted(&self) -> bool {
         self.vm.as_ref().is_some_and(|v| v.status == 3)
+    }
+
+    /// The netlist's refusal (its first diagnostic line), when the
+    /// netlist back end refused the program (exit 1, `error[E11..]`).
+    pub fn netlist_refusal(&self) -> Option<String> {
+        let n = self.netlist.as_ref()?;
+        if n.status != 1 {
+            return None;
+        }
+        n.stderr
+            .lines()
+            .find(|l| l.contains("error[E11"))
+            .map(|l| l.to_string())
     }
 
     /// The VM's stderr without the compile warnings.
@@ -166,6 +183,35 @@ impl Report {
                 diffs.push(format!(
                     "JIT stderr differs:\n{}",
                     first_difference(&vm.stderr, &j.stderr)
+                ));
+            }
+            if !diffs.is_empty() {
+                return Some(diffs.join("\n"));
+            }
+        }
+        if let Some(n) = self
+            .netlist
+            .as_ref()
+            .filter(|_| self.netlist_refusal().is_none())
+        {
+            let mut diffs = Vec::new();
+            if vm.status != n.status {
+                diffs.push(format!(
+                    "exit status: VM {}, netlist {}
+{}",
+                    vm.status, n.status, n.stderr
+                ));
+            }
+            if vm.stdout != n.stdout {
+                diffs.push(format!(
+                    "netlist stdout differs:\n{}",
+                    first_difference(&vm.stdout, &n.stdout)
+                ));
+            }
+            if vm.stderr != n.stderr {
+                diffs.push(format!(
+                    "netlist stderr differs:\n{}",
+                    first_difference(&vm.stderr, &n.stderr)
                 ));
             }
             if !diffs.is_empty() {
@@ -245,6 +291,8 @@ pub struct Options {
     pub c: bool,
     /// Try the JIT.
     pub jit: bool,
+    /// Try the netlist (`--backend netlist`).
+    pub netlist: bool,
     /// Keep the directories of programs that passed too (those with a
     /// problem are always kept).
     pub keep: bool,
@@ -258,6 +306,7 @@ impl Default for Options {
         Options {
             c: true,
             jit: true,
+            netlist: false,
             keep: false,
             stop_after: 20,
         }
@@ -341,10 +390,12 @@ pub fn run_one(g: &Generated, dir: &Path, opts: &Options) -> Result<Report, Stri
         check,
         vm: None,
         jit: None,
+        netlist: None,
         c: CSide::Skipped,
         cycles: g.cycles,
         vm_time: Duration::ZERO,
         jit_time: Duration::ZERO,
+        netlist_time: Duration::ZERO,
         c_time: Duration::ZERO,
     };
     if report.check_failed() {
@@ -362,6 +413,13 @@ pub fn run_one(g: &Generated, dir: &Path, opts: &Options) -> Result<Report, Stri
         jit_argv.extend(["--backend", "jit"]);
         report.jit = Some(stc(&jit_argv));
         report.jit_time = t1.elapsed();
+    }
+    if opts.netlist {
+        let t1 = Instant::now();
+        let mut nl_argv = argv.clone();
+        nl_argv.extend(["--backend", "netlist"]);
+        report.netlist = Some(stc(&nl_argv));
+        report.netlist_time = t1.elapsed();
     }
     if opts.c {
         let t1 = Instant::now();
@@ -401,6 +459,10 @@ pub struct Summary {
     pub compared: usize,
     /// Programs compared with the JIT.
     pub jit_compared: usize,
+    /// Programs compared with the netlist.
+    pub netlist_compared: usize,
+    /// Programs the netlist refused: the seed and the diagnostic.
+    pub netlist_refused: Vec<(u64, String)>,
     /// Why the C side was not available, if it was not.
     pub c_unavailable: Option<String>,
     /// Seeds with a problem, and the problem (errors, failed builds,
@@ -410,6 +472,7 @@ pub struct Summary {
     pub errors: Vec<(u64, String)>,
     pub vm_time: Duration,
     pub jit_time: Duration,
+    pub netlist_time: Duration,
     pub c_time: Duration,
     pub wall_time: Duration,
 }
@@ -433,6 +496,17 @@ impl Summary {
             self.c_time.as_secs_f64() * 1000.0 / n,
             self.wall_time.as_secs_f64(),
         );
+        if self.netlist_compared > 0 || !self.netlist_refused.is_empty() {
+            s.push_str(&format!(
+                "\nnetlist: {} compared, {} refused, {:.1} ms/program",
+                self.netlist_compared,
+                self.netlist_refused.len(),
+                self.netlist_time.as_secs_f64() * 1000.0 / n,
+            ));
+            for (seed, why) in self.netlist_refused.iter().take(5) {
+                s.push_str(&format!("\n  refused seed {seed}: {why}"));
+            }
+        }
         if !self.faults.is_empty() {
             let f: Vec<String> = self
                 .faults
@@ -524,6 +598,14 @@ pub fn run_many(
                         if r.jit.is_some() {
                             s.jit_compared += 1;
                         }
+                        s.netlist_time += r.netlist_time;
+                        match r.netlist_refusal() {
+                            Some(why) => s.netlist_refused.push((seed, why)),
+                            None if r.netlist.is_some() && !r.check_failed() => {
+                                s.netlist_compared += 1
+                            }
+                            None => {}
+                        }
                         if r.check_failed() {
                             s.check_failed.push(seed);
                         }
@@ -569,6 +651,7 @@ pub fn run_many(
     s.check_failed.sort_unstable();
     s.faults.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
     s.problems.sort_by_key(|(seed, _)| *seed);
+    s.netlist_refused.sort_by_key(|(seed, _)| *seed);
     s.errors.sort_by_key(|(seed, _)| *seed);
     s.wall_time = start.elapsed();
     s
@@ -593,10 +676,12 @@ mod tests {
             check: out("", "w.st:1:1: warning[W0101]: ...\n", 0),
             vm: Some(vm),
             jit: None,
+            netlist: None,
             c,
             cycles: 2,
             vm_time: Duration::ZERO,
             jit_time: Duration::ZERO,
+            netlist_time: Duration::ZERO,
             c_time: Duration::ZERO,
         }
     }

@@ -473,7 +473,12 @@ impl Gen {
                 // operands of a comparison get none).
                 let wide = self.rng.chance(25);
                 let st = if wide { E::Wstring } else { E::String };
-                let inner = match self.rng.below(4) {
+                let mut pick = self.rng.below(4);
+                if self.size.circuit && pick < 2 {
+                    // (No strings in a circuit.)
+                    pick += 2;
+                }
+                let inner = match pick {
                     0 => format!("LEN({})", self.ex(b, st, d, false)),
                     1 => {
                         let x = self.ex(b, st, d, false);
@@ -580,7 +585,10 @@ impl Gen {
             }
         }
         let all: Vec<(E, u64)> = crate::model::ELEMS.to_vec();
-        let w: Vec<u64> = all.iter().map(|&(_, w)| w).collect();
+        let w: Vec<u64> = all
+            .iter()
+            .map(|&(e, w)| if self.allowed(e) { w } else { 0 })
+            .collect();
         all[self.rng.weighted(&w)].0
     }
 
@@ -1054,7 +1062,7 @@ impl Gen {
         let sources: Vec<E> = crate::model::ELEMS
             .iter()
             .map(|&(e, _)| e)
-            .filter(|&s| s != t && stc_values::conversion_allowed(s, t))
+            .filter(|&s| s != t && stc_values::conversion_allowed(s, t) && self.allowed(s))
             .collect();
         if sources.is_empty() {
             return None;

@@ -29,6 +29,11 @@ pub struct Size {
     /// left unguarded (those may fault at run time: both back ends must
     /// agree on faults too, but a program that faults early tests little).
     pub unguarded: u64,
+    /// Only programs a circuit can express (docs/netlist.md): no WHILE or
+    /// REPEAT, FOR with constant bounds and step, no Instruction List (its
+    /// backward jumps are loops). For the differential run with
+    /// `--backend netlist`.
+    pub circuit: bool,
 }
 
 impl Size {
@@ -42,6 +47,7 @@ impl Size {
             depth: 3,
             max_cycles: 12,
             unguarded: 15,
+            circuit: false,
         }
     }
 
@@ -55,6 +61,7 @@ impl Size {
             depth: 3,
             max_cycles: 16,
             unguarded: 8,
+            circuit: false,
         }
     }
 
@@ -68,6 +75,15 @@ impl Size {
             depth: 4,
             max_cycles: 20,
             unguarded: 3,
+            circuit: false,
+        }
+    }
+
+    /// The same size, generating only what a circuit can express.
+    pub fn for_circuit(self) -> Size {
+        Size {
+            circuit: true,
+            ..self
         }
     }
 }
@@ -228,7 +244,7 @@ impl Gen {
         let mut pous = String::new();
         let nf = self.rng.range(0, self.size.functions as i128) as usize;
         for i in 0..nf {
-            let text = if self.rng.chance(25) {
+            let text = if self.rng.chance(25) && !self.size.circuit {
                 self.gen_il_function(i)
             } else {
                 self.gen_function(i)
@@ -237,7 +253,7 @@ impl Gen {
         }
         let nfb = self.rng.range(0, self.size.function_blocks as i128) as usize;
         for i in 0..nfb {
-            let text = if self.rng.chance(25) {
+            let text = if self.rng.chance(25) && !self.size.circuit {
                 self.gen_il_fb(i)
             } else {
                 self.gen_fb(i)
@@ -277,7 +293,7 @@ impl Gen {
             });
             self.event_global = Some("g_event".into());
         }
-        let main = if event || !self.rng.chance(12) {
+        let main = if event || !self.rng.chance(12) || self.size.circuit {
             self.gen_program("Main", self.size.statements, &globals)
         } else {
             let (text, vars) = self.gen_il_program("Main", &globals);
@@ -291,7 +307,7 @@ impl Gen {
         if config {
             let with_aux = self.rng.chance(50);
             let aux = if with_aux {
-                let a = if self.rng.chance(30) {
+                let a = if self.rng.chance(30) && !self.size.circuit {
                     let (text, vars) = self.gen_il_program("Aux", &globals);
                     Prog { text, vars }
                 } else {
@@ -439,8 +455,16 @@ impl Gen {
     // ------------------------------------------------------------------
     // Types.
 
+    /// Whether values of `e` may be generated (a circuit has no strings).
+    pub(crate) fn allowed(&self, e: E) -> bool {
+        !(self.size.circuit && matches!(e, E::String | E::Wstring))
+    }
+
     pub(crate) fn elem(&mut self) -> E {
-        let w: Vec<u64> = ELEMS.iter().map(|&(_, w)| w).collect();
+        let w: Vec<u64> = ELEMS
+            .iter()
+            .map(|&(e, w)| if self.allowed(e) { w } else { 0 })
+            .collect();
         ELEMS[self.rng.weighted(&w)].0
     }
 
@@ -521,6 +545,7 @@ impl Gen {
         ];
         match self.rng.weighted(&w) {
             0 => Ty::E(self.elem()),
+            1 if self.size.circuit => Ty::E(self.elem()),
             1 => Ty::Str {
                 wide: self.rng.chance(25),
                 len: self.rng.range(1, 12) as u32,
@@ -734,6 +759,7 @@ impl Gen {
         ];
         match self.rng.weighted(&w) {
             0 => Ty::E(self.elem()),
+            1 if self.size.circuit => Ty::E(self.elem()),
             1 => Ty::Str {
                 wide: self.rng.chance(25),
                 len: self.rng.range(1, 20) as u32,
@@ -806,6 +832,7 @@ impl Gen {
             .weighted(&[20, 1, if self.types.enums.is_empty() { 0 } else { 2 }])
         {
             0 => Ty::E(self.elem()),
+            1 if self.size.circuit => Ty::E(self.elem()),
             1 => Ty::Str {
                 wide: false,
                 len: self.rng.range(4, 30) as u32,
@@ -825,7 +852,11 @@ impl Gen {
             E::String | E::Wstring => return None,
             _ => 'L',
         };
-        let area = ['I', 'Q', 'M'][self.rng.index(3)];
+        let mut area = ['I', 'Q', 'M'][self.rng.index(3)];
+        if area == 'I' && self.size.circuit {
+            // (A circuit's `%I` variables are its inputs: never written.)
+            area = 'M';
+        }
         let n = self.next_address;
         self.next_address += 1;
         Some(if size == 'X' {
@@ -1155,13 +1186,15 @@ impl Gen {
         let d = self.size.depth;
         let can_nest = b.nest < 3;
         let can_loop = can_nest && b.loop_depth < b.max_loops;
+        // (A circuit unrolls loops: only FOR with constant bounds.)
+        let can_while = can_loop && !self.size.circuit;
         let w = [
             40,
             if can_nest { 10 } else { 0 },
             if can_nest { 5 } else { 0 },
             if can_loop { 6 } else { 0 },
-            if can_loop { 3 } else { 0 },
-            if can_loop { 3 } else { 0 },
+            if can_while { 3 } else { 0 },
+            if can_while { 3 } else { 0 },
             if b.reach.instances.is_empty() { 0 } else { 12 },
             if b.funcs > 0 { 3 } else { 0 },
             if b.loop_depth > 0 { 4 } else { 0 },
@@ -1360,6 +1393,7 @@ impl Gen {
             let narrower: Vec<E> = ELEMS
                 .iter()
                 .map(|&(s, _)| s)
+                .filter(|&s| self.allowed(s))
                 .filter(|&s| stc_values::implicit_widening(s, e))
                 .collect();
             if !narrower.is_empty() {
@@ -1519,7 +1553,12 @@ impl Gen {
             .flatten()
             .filter(|&(lo, hi)| lo >= lo_t && hi <= hi_t)
             .collect();
-        let (start, end, step, lo, hi) = match self.rng.below(8) {
+        // (Run-time bounds and steps, 5 and 6, are not for a circuit.)
+        let mut pick = self.rng.below(8);
+        if self.size.circuit && (pick == 5 || pick == 6) {
+            pick = 7;
+        }
+        let (start, end, step, lo, hi) = match pick {
             0 | 1 if !arrays.is_empty() => {
                 let (lo, hi) = *self.rng.pick(&arrays);
                 if is_signed(t) && self.rng.chance(30) {

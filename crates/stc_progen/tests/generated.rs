@@ -14,6 +14,11 @@
 //!    jit` must print the same bytes (the C run of 2. compares the JIT
 //!    too); the long run is `stc-progen run N --no-c`.
 //!
+//! 4. The netlist: `STC_DIFF_NETLIST_PROGRAMS` programs (default 150) of
+//!    the generator's circuit mode (what a circuit can express) run on the
+//!    VM and with `stc run --backend netlist` must print the same bytes;
+//!    the long run is `stc-progen run N --circuit --no-c --no-jit`.
+//!
 //! `STC_DIFF_SEED` chooses the first seed of the differential run (default
 //! a fixed one, so CI is reproducible); the long local run is
 //! `cargo run --release -p stc_progen -- run N` (see the crate's README).
@@ -163,4 +168,39 @@ fn vm_and_jit_agree_on_generated_programs() {
             s.text()
         );
     }
+}
+
+#[test]
+fn vm_and_netlist_agree_on_circuit_programs() {
+    let n = env_number("STC_DIFF_NETLIST_PROGRAMS", 150);
+    if n == 0 {
+        eprintln!("note: STC_DIFF_NETLIST_PROGRAMS=0: netlist differential test skipped");
+        return;
+    }
+    let first = env_number("STC_DIFF_SEED", 1_000_000) + 800_000;
+    let opts = diff::Options {
+        c: false,
+        jit: false,
+        netlist: true,
+        ..diff::Options::default()
+    };
+    let seeds: Vec<u64> = (first..first + n).collect();
+    let s = diff::run_many(
+        &seeds,
+        &Size::small().for_circuit(),
+        2,
+        &work("netlist"),
+        &opts,
+    );
+    eprintln!("{}", s.text());
+    assert!(s.errors.is_empty(), "{}", s.text());
+    assert!(s.check_failed.is_empty(), "{}", s.text());
+    assert!(s.problems.is_empty(), "{}", s.text());
+    // Circuit mode generates what a circuit can express: (almost) every
+    // program is compared, and the few refusals are listed.
+    assert!(
+        s.netlist_compared as u64 * 10 >= n * 9,
+        "too few programs compared with the netlist: {}",
+        s.text()
+    );
 }

@@ -87,6 +87,11 @@ pub const FUNCTIONS: &[(Intrinsic, &str)] = {
         (I::ConcatTod, "CONCAT_TOD"),
         (I::ConcatDt, "CONCAT_DT"),
         (I::DayOfWeek, "DAY_OF_WEEK"),
+        // One field of the date or time on A1: A2 is the field's index
+        // (the lowering gives each output of a SPLIT call its own call).
+        (I::SplitDate, "SPLIT_DATE"),
+        (I::SplitTod, "SPLIT_TOD"),
+        (I::SplitDt, "SPLIT_DT"),
         (I::Add, "ADD"),
         (I::Sub, "SUB"),
         (I::Mul, "MUL"),

@@ -1897,14 +1897,6 @@ impl<'m> Tr<'m> {
                 outputs,
             } => self.call_fn(fr, *func, inputs, inouts, outputs)?,
             ExprKind::Intrinsic { func, args } => {
-                use stc_values::Intrinsic as I;
-                if matches!(func, I::SplitDate | I::SplitTod | I::SplitDt) {
-                    return Err(self.refuse(
-                        fr,
-                        Code::E1105,
-                        "SPLIT_DATE, SPLIT_TOD and SPLIT_DT: not in the component library yet",
-                    ));
-                }
                 let t = self.elem(fr, e.ty)?;
                 let mut ins = Vec::with_capacity(args.len());
                 for a in args {

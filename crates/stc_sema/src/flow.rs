@@ -70,6 +70,10 @@ impl<'a> Sema<'a> {
         // A part reported as not supported (an IL or SFC body, a METHOD...)
         // may use any variable and assign the result: nothing is known.
         let partial = pou.partial || self.body.partial;
+        // A block another block extends: its VAR variables may be used by
+        // the derived blocks' bodies and methods (checked later or not at
+        // all here), so none is called unused.
+        let extended = self.pous.iter().any(|d| d.base == Some(owner));
         let vars: Vec<(stc_syntax::Symbol, Span, Section, bool, crate::TypeId)> = self.pous
             [p.0 as usize]
             .vars
@@ -82,6 +86,7 @@ impl<'a> Sema<'a> {
                 // the tag and what is inherited (the base's business).
                 let def = &self.pous[p.0 as usize];
                 let quiet = v.location.is_some()
+                    || (extended && v.section == Section::Var && p == owner)
                     || v.ty == crate::TypeId::ERROR
                     || (i as u32) < def.inherited
                     || def.tag == Some(VarId(i as u32));

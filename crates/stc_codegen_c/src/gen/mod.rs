@@ -89,6 +89,8 @@ struct Gen<'a> {
     used: IdVec<PouId, bool>,
     /// The POUs whose body is generated (`called_pous`).
     called: IdVec<PouId, bool>,
+    /// The POUs that have instances (and so an initialiser).
+    instantiated: IdVec<PouId, bool>,
     /// The type of each process-image slot: of the first variable located
     /// there, else of its address.
     io_types: FxHashMap<DirectAddress, TypeId>,
@@ -144,11 +146,13 @@ pub fn program(m: &Module, locate: Locate<'_>) -> Result<Program, Error> {
         contexts,
         used: used_pous(m),
         called: IdVec::new(),
+        instantiated: IdVec::new(),
         io_types,
         image_header: String::new(),
         private_cells: FxHashSet::default(),
     };
     g.called = called_pous(m, &g.used);
+    g.instantiated = instantiated_pous(m, &g.used);
     g.run()
 }
 
@@ -179,7 +183,7 @@ impl<'a> Gen<'a> {
             }
         }
         for &p in &used {
-            if m.pous[p].kind != PouKind::Function {
+            if m.pous[p].kind != PouKind::Function && self.instantiated[p] {
                 self.init_fn(p)?;
             }
         }
@@ -455,7 +459,7 @@ impl<'a> Gen<'a> {
             let sig = self.signature(p);
             let _ = writeln!(self.protos, "{sig};");
         }
-        if m.pous[p].kind != PouKind::Function {
+        if m.pous[p].kind != PouKind::Function && self.instantiated[p] {
             let _ = writeln!(
                 self.protos,
                 "static void {}({} *const self, uint32_t ctx);",
@@ -1639,6 +1643,58 @@ fn called_pous(m: &Module, used: &IdVec<PouId, bool>) -> IdVec<PouId, bool> {
     called
 }
 
+/// The function blocks and programs whose instances a value of type `t`
+/// holds (not behind a reference), added to `out`.
+fn type_pous(m: &Module, t: TypeId, out: &mut Vec<PouId>, seen: &mut FxHashSet<TypeId>) {
+    if !seen.insert(t) {
+        return;
+    }
+    match m.types.kind(t) {
+        TypeKind::Fb(p) | TypeKind::Program(p) => out.push(*p),
+        TypeKind::Array { elem, .. } => type_pous(m, *elem, out, seen),
+        TypeKind::Struct { fields } => {
+            for f in fields {
+                type_pous(m, f.ty, out, seen);
+            }
+        }
+        _ => {}
+    }
+}
+
+/// The used POUs with instances: programs, and the blocks a global or a
+/// variable of a used POU holds by value. Only they get an initialiser (a
+/// base class reached only through references and its derived blocks, whose
+/// initialisers set the inherited variables themselves, has none: an unused
+/// static function is an error under `-Werror`).
+fn instantiated_pous(m: &Module, used: &IdVec<PouId, bool>) -> IdVec<PouId, bool> {
+    let mut out: Vec<PouId> = m
+        .pous
+        .ids()
+        .filter(|&p| m.pous[p].kind == PouKind::Program)
+        .collect();
+    let mut seen = FxHashSet::default();
+    for g in &m.globals {
+        type_pous(m, g.ty, &mut out, &mut seen);
+    }
+    for (p, pou) in m.pous.iter_enumerated() {
+        if used[p] {
+            // (An in-out or external refers to an instance held elsewhere.)
+            for v in pou
+                .vars
+                .iter()
+                .filter(|v| v.storage != stc_ir::Storage::Ref)
+            {
+                type_pous(m, v.ty, &mut out, &mut seen);
+            }
+        }
+    }
+    let mut inst: IdVec<PouId, bool> = m.pous.iter().map(|_| false).collect();
+    for p in out {
+        inst[p] = true;
+    }
+    inst
+}
+
 /// The POUs a program uses: every PROGRAM, and what their variables,
 /// the globals and their bodies need (instances and calls), transitively.
 fn used_pous(m: &Module) -> IdVec<PouId, bool> {
@@ -1649,21 +1705,6 @@ fn used_pous(m: &Module) -> IdVec<PouId, bool> {
         .filter(|&p| m.pous[p].kind == PouKind::Program)
         .collect();
     let mut seen_types: FxHashSet<TypeId> = FxHashSet::default();
-    fn type_pous(m: &Module, t: TypeId, out: &mut Vec<PouId>, seen: &mut FxHashSet<TypeId>) {
-        if !seen.insert(t) {
-            return;
-        }
-        match m.types.kind(t) {
-            TypeKind::Fb(p) | TypeKind::Program(p) => out.push(*p),
-            TypeKind::Array { elem, .. } => type_pous(m, *elem, out, seen),
-            TypeKind::Struct { fields } => {
-                for f in fields {
-                    type_pous(m, f.ty, out, seen);
-                }
-            }
-            _ => {}
-        }
-    }
     for g in &m.globals {
         type_pous(m, g.ty, &mut work, &mut seen_types);
     }

@@ -1,7 +1,8 @@
 //! `stc-bench vm [CYCLES] [KERNEL]`: the kernels of `bench/kernels`, each run on the
-//! VM and as hand-written C compiled with `gcc -O2`; prints nanoseconds per
-//! cycle (best of 5 repetitions on the VM, of 20 in C, where a repetition
-//! costs less) and the ratios VM / C and generated C / hand-written C.
+//! VM, on the JIT, as generated C and as hand-written C compiled with `gcc
+//! -O2`; prints nanoseconds per cycle (best of 5 repetitions on the VM and
+//! the JIT, of 20 in C, where a repetition costs less) and the ratios VM /
+//! C, JIT / C and generated C / hand-written C.
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -68,6 +69,25 @@ fn vm_time_of(
         let t0 = Instant::now();
         for k in 0..cycles {
             m.run_program(&inst, k as i64 * 10_000_000, u64::MAX)
+                .map_err(|f| f.to_string())?;
+        }
+        best = best.min(t0.elapsed().as_nanos() as f64 / cycles as f64);
+    }
+    Ok(best)
+}
+
+/// Nanoseconds per cycle of a kernel on the JIT (compile time excluded).
+fn jit_time(st: &Path, cycles: u64) -> Result<f64, String> {
+    use stc_runtime::Engine;
+    let (module, _) = compile(load(st)?, Vec::new())?;
+    let mut e = stc_engine_jit::JitEngine::build(&module).map_err(|e| e.to_string())?;
+    let inst = e.model().programs.first().ok_or("no program")?.clone();
+    let mut best = f64::MAX;
+    for _ in 0..5 {
+        e.reset();
+        let t0 = Instant::now();
+        for k in 0..cycles {
+            e.run_program(&inst, k as i64 * 10_000_000, u64::MAX)
                 .map_err(|f| f.to_string())?;
         }
         best = best.min(t0.elapsed().as_nanos() as f64 / cycles as f64);
@@ -190,8 +210,15 @@ pub fn run_kernels(cycles: u64, only: Option<&str>) {
         sts.retain(|p| p.file_stem().is_some_and(|s| s == k));
     }
     println!(
-        "{:<10} {:>14} {:>14} {:>14} {:>8} {:>8}",
-        "kernel", "VM ns/cycle", "gen-C ns/cyc", "C ns/cycle", "VM/C", "genC/C"
+        "{:<10} {:>14} {:>14} {:>14} {:>14} {:>8} {:>8} {:>8}",
+        "kernel",
+        "VM ns/cycle",
+        "JIT ns/cycle",
+        "gen-C ns/cyc",
+        "C ns/cycle",
+        "VM/C",
+        "JIT/C",
+        "genC/C"
     );
     for st in sts {
         let name = st
@@ -200,6 +227,7 @@ pub fn run_kernels(cycles: u64, only: Option<&str>) {
             .unwrap_or("?")
             .to_string();
         let vm = vm_time(&st, cycles);
+        let jit = jit_time(&st, cycles);
         let c = c_time(&st.with_extension("c"), cycles);
         let g = gen_c_time(&st, cycles);
         match (vm, c) {
@@ -208,8 +236,12 @@ pub fn run_kernels(cycles: u64, only: Option<&str>) {
                     Ok(g) => (format!("{g:.0}"), format!("{:.2}", g / c)),
                     Err(e) => ("-".to_string(), format!("({e})")),
                 };
+                let (js, jr) = match &jit {
+                    Ok(j) => (format!("{j:.0}"), format!("{:.2}", j / c)),
+                    Err(e) => ("-".to_string(), format!("({e})")),
+                };
                 println!(
-                    "{name:<10} {v:>14.0} {gs:>14} {c:>14.0} {:>8.1} {gr:>8}",
+                    "{name:<10} {v:>14.0} {js:>14} {gs:>14} {c:>14.0} {:>8.1} {jr:>8} {gr:>8}",
                     v / c
                 )
             }

@@ -21,7 +21,7 @@ use cranelift_codegen::ir::{
 };
 use cranelift_codegen::isa::TargetFrontendConfig;
 use cranelift_codegen::settings::{self, Configurable};
-use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
+use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext, Variable};
 use cranelift_jit::{ArenaMemoryProvider, JITBuilder, JITModule};
 use cranelift_module::{FuncId, Linkage, Module as _};
 use rustc_hash::FxHashMap;
@@ -635,6 +635,13 @@ struct Fx<'g, 'a, 'm, 'f> {
     ret_block: Block,
     loops: Vec<(Block, Block)>,
     funcs: FxHashMap<FuncId, FuncRef>,
+    /// By variable of this POU: the SSA variable holding it, when it is
+    /// held in a register inside the body (see [`promotable`]).
+    regs: Vec<Option<(Variable, Type)>>,
+    /// By variable: whether the body assigns it (what is stored back).
+    written: Vec<bool>,
+    /// The watchdog steps left, held in a register inside the body.
+    steps: Option<Variable>,
 }
 
 impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
@@ -668,6 +675,82 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
             ret_block,
             loops: Vec::new(),
             funcs: FxHashMap::default(),
+            regs: Vec::new(),
+            written: Vec::new(),
+            steps: None,
+        }
+    }
+
+    /// Gives the promotable scalars of this POU their SSA variables,
+    /// loaded from memory, and the watchdog count its register.
+    fn promote(&mut self) {
+        let pou = &self.g.m.pous[self.p];
+        let (ok, written) = promotable(self.g.m, self.p, |t| self.scalar(t));
+        self.regs = vec![None; ok.len()];
+        self.written = written;
+        for v in pou.vars.ids() {
+            if !ok[v.index()] {
+                continue;
+            }
+            let Some(e) = self.scalar(pou.vars[v].ty) else {
+                continue;
+            };
+            let var = self.b.declare_var(cl_type(e));
+            self.regs[v.index()] = Some((var, cl_type(e)));
+        }
+        let st = self.b.declare_var(I64);
+        self.steps = Some(st);
+        self.reload();
+    }
+
+    /// Stores the registers the body assigns (and the watchdog count)
+    /// back to memory: before a call, at every exit.
+    fn flush(&mut self) {
+        for i in 0..self.regs.len() {
+            let Some((var, _)) = self.regs[i] else {
+                continue;
+            };
+            if !self.written[i] {
+                continue;
+            }
+            let x = self.b.use_var(var);
+            let a = self.var_addr(VarId::new(i));
+            let ptr = self.native(a);
+            self.b.ins().store(MemFlags::new(), x, ptr, 0);
+        }
+        if let Some(st) = self.steps {
+            let x = self.b.use_var(st);
+            self.b
+                .ins()
+                .store(MemFlags::trusted(), x, self.ctx, CTX_STEPS);
+        }
+    }
+
+    /// Loads every register from memory: at entry, after a call.
+    fn reload(&mut self) {
+        for i in 0..self.regs.len() {
+            let Some((var, t)) = self.regs[i] else {
+                continue;
+            };
+            let a = self.var_addr(VarId::new(i));
+            let ptr = self.native(a);
+            let x = self.b.ins().load(t, MemFlags::new(), ptr, 0);
+            self.b.def_var(var, x);
+        }
+        if let Some(st) = self.steps {
+            let x = self
+                .b
+                .ins()
+                .load(I64, MemFlags::trusted(), self.ctx, CTX_STEPS);
+            self.b.def_var(st, x);
+        }
+    }
+
+    /// The register of a place that is a whole promoted variable.
+    fn reg_of(&self, p: &Place) -> Option<(Variable, Type)> {
+        match (&p.root, p.proj.is_empty()) {
+            (Root::Var(v), true) => self.regs.get(v.index()).copied().flatten(),
+            _ => None,
         }
     }
 
@@ -682,10 +765,12 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                 self.copy(d, s, len);
             }
         }
+        self.promote();
         self.block(&pou.body)?;
         self.b.ins().jump(self.ret_block, &[]);
         // Exits.
         self.b.switch_to_block(self.ret_block);
+        self.flush();
         let z = self.b.ins().iconst(I32, 0);
         self.b.ins().return_(&[z]);
         // A fault from a callee: the innermost function block or program
@@ -710,6 +795,8 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         let one = self.b.ins().iconst(I32, 1);
         self.b.ins().return_(&[one]);
         self.b.switch_to_block(self.fault_block);
+        // The report after a fault shows every assignment made before it.
+        self.flush();
         let kp = self.b.block_params(self.fault_block).to_vec();
         self.b
             .ins()
@@ -834,18 +921,17 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         self.b.switch_to_block(cont);
     }
 
-    /// One watchdog step.
+    /// One watchdog step: a decrement of the register holding the count
+    /// (stored to the context before calls and at the exits).
     fn step(&mut self) {
-        let s = self
-            .b
-            .ins()
-            .load(I64, MemFlags::trusted(), self.ctx, CTX_STEPS);
+        let Some(st) = self.steps else {
+            return;
+        };
+        let s = self.b.use_var(st);
         let out = self.b.ins().icmp_imm(IntCC::Equal, s, 0);
         self.fault_if(out, FaultKind::Watchdog);
         let s1 = self.b.ins().iadd_imm(s, -1);
-        self.b
-            .ins()
-            .store(MemFlags::trusted(), s1, self.ctx, CTX_STEPS);
+        self.b.def_var(st, s1);
     }
 
     fn stack_slot(&mut self, size: u32) -> CVal {
@@ -951,7 +1037,10 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         self.site = self.site_of((s.line, s.col));
         match &s.kind {
             StmtKind::Assign { place, value } => {
-                if stc_ir::visit::has_call(value) {
+                if let Some(var) = self.reg_of(place) {
+                    let v = self.expr(value)?;
+                    self.def_reg(var, place, v)?;
+                } else if stc_ir::visit::has_call(value) {
                     let pl = self.place(place)?;
                     let v = self.expr(value)?;
                     self.store(&pl, v, value.ty, place.ty)?;
@@ -1103,6 +1192,24 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
             self.b.ins().jump(end, &[]);
         }
         self.b.switch_to_block(end);
+        Ok(())
+    }
+
+    /// Assigns a promoted variable (through memory if the value's width
+    /// is not the register's: what a store would do).
+    fn def_reg(&mut self, (var, want): (Variable, Type), place: &Place, v: V) -> Result<(), Error> {
+        let V::S(x) = v else {
+            return Err(internal("a promoted variable given a non-scalar"));
+        };
+        if self.b.func.dfg.value_type(x) == want {
+            self.b.def_var(var, x);
+        } else {
+            let pl = self.place(place)?;
+            let ptr = self.native(pl.addr);
+            self.b.ins().store(MemFlags::new(), x, ptr, 0);
+            let y = self.b.ins().load(want, MemFlags::new(), ptr, 0);
+            self.b.def_var(var, y);
+        }
         Ok(())
     }
 
@@ -1457,6 +1564,9 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         match &e.kind {
             ExprKind::Const(v) => self.konst(e.ty, v),
             ExprKind::Load(p) => {
+                if let Some((var, _)) = self.reg_of(p) {
+                    return Ok(V::S(self.b.use_var(var)));
+                }
                 let pl = self.place(p)?;
                 self.load_place(&pl, e.ty)
             }
@@ -1840,11 +1950,15 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         let id =
             self.g.ids[callee.index()].ok_or_else(|| internal("a call of a POU not compiled"))?;
         let f = self.func(id);
+        // The callee may observe (through a reference) or change any
+        // variable: memory is made exact before, registers reloaded after.
+        self.flush();
         let call = self.b.ins().call(f, &[self.ctx, self.base, this, frame]);
         let st = self.b.inst_results(call)[0];
         let cont = self.b.create_block();
         self.b.ins().brif(st, self.prop_block, &[], cont, &[]);
         self.b.switch_to_block(cont);
+        self.reload();
         Ok(())
     }
 
@@ -1989,4 +2103,109 @@ impl SpanLineCol for stc_ir::Pou {
             self.body.first().map_or(0, |s| s.col),
         )
     }
+}
+
+/// Which variables of POU `p` the JIT holds in registers inside one
+/// execution of its body, and which of those the body assigns. A variable
+/// qualifies when it is a scalar stored in the instance or the frame (not
+/// through a reference) and the body only reads it whole and assigns it
+/// whole, with a value of its own width: never indexes or selects a bit
+/// of it, never takes its reference, binds it to an in-out or names it as
+/// an output target. A body that dereferences anything, names `THIS` or
+/// uses a reference variable (VAR_IN_OUT, VAR_EXTERNAL) keeps everything in
+/// memory, since one of those might be an alias of its own variables.
+/// Calls are handled where they are made (flushed before, reloaded after).
+fn promotable(
+    m: &Module,
+    p: PouId,
+    scalar: impl Fn(TypeId) -> Option<ElemType>,
+) -> (Vec<bool>, Vec<bool>) {
+    let pou = &m.pous[p];
+    let n = pou.vars.len();
+    let mut ok: Vec<bool> = pou
+        .vars
+        .ids()
+        .map(|v| {
+            let var = &pou.vars[v];
+            var.storage != Storage::Ref && scalar(var.ty).is_some()
+        })
+        .collect();
+    let mut written = vec![false; n];
+    let mut aliased = false;
+    let mut whole = vec![0usize; n];
+    let mut named = vec![0usize; n];
+    // Every place the body names; those read or assigned whole are
+    // counted again below, so a variable named anywhere else is excluded.
+    stc_ir::visit::walk(
+        &pou.body,
+        &mut |e| {
+            if let ExprKind::Load(pl) = &e.kind {
+                if let (Root::Var(v), true) = (&pl.root, pl.proj.is_empty()) {
+                    whole[v.index()] += 1;
+                }
+            }
+        },
+        &mut |pl| match &pl.root {
+            Root::Var(v) => {
+                named[v.index()] += 1;
+                if pou.vars[*v].storage == Storage::Ref {
+                    aliased = true;
+                }
+            }
+            Root::Deref(_) | Root::This => aliased = true,
+            Root::Global(_) | Root::Direct(_) => {}
+        },
+    );
+    fn assigned(
+        stmts: &[Stmt],
+        scalar: &dyn Fn(TypeId) -> Option<ElemType>,
+        whole: &mut [usize],
+        written: &mut [bool],
+        ok: &mut [bool],
+    ) {
+        for s in stmts {
+            match &s.kind {
+                StmtKind::Assign { place, value } => {
+                    if let (Root::Var(v), true) = (&place.root, place.proj.is_empty()) {
+                        let i = v.index();
+                        whole[i] += 1;
+                        written[i] = true;
+                        let same = match (scalar(place.ty), scalar(value.ty)) {
+                            (Some(a), Some(b)) => cl_type(a) == cl_type(b),
+                            _ => false,
+                        };
+                        if !same {
+                            ok[i] = false;
+                        }
+                    }
+                }
+                StmtKind::If {
+                    then_body,
+                    else_body,
+                    ..
+                } => {
+                    assigned(then_body, scalar, whole, written, ok);
+                    assigned(else_body, scalar, whole, written, ok);
+                }
+                StmtKind::Switch { arms, default, .. } => {
+                    for a in arms {
+                        assigned(&a.body, scalar, whole, written, ok);
+                    }
+                    assigned(default, scalar, whole, written, ok);
+                }
+                StmtKind::Loop { body, latch } => {
+                    assigned(body, scalar, whole, written, ok);
+                    assigned(latch, scalar, whole, written, ok);
+                }
+                _ => {}
+            }
+        }
+    }
+    assigned(&pou.body, &scalar, &mut whole, &mut written, &mut ok);
+    for i in 0..n {
+        if aliased || whole[i] != named[i] {
+            ok[i] = false;
+        }
+    }
+    (ok, written)
 }

@@ -642,6 +642,8 @@ struct Fx<'g, 'a, 'm, 'f> {
     written: Vec<bool>,
     /// The watchdog steps left, held in a register inside the body.
     steps: Option<Variable>,
+    /// The indices range analysis proves inside their bounds (unchecked).
+    proven: stc_ir::ranges::Proven,
 }
 
 impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
@@ -660,6 +662,8 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         b.append_block_param(fault_block, I32);
         let prop_block = b.create_block();
         let ret_block = b.create_block();
+        let m: &'m Module = g.m;
+        let proven = stc_ir::ranges::Proven::of(m, &m.pous[p]);
         Fx {
             g,
             module,
@@ -678,6 +682,7 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
             regs: Vec::new(),
             written: Vec::new(),
             steps: None,
+            proven,
         }
     }
 
@@ -1387,6 +1392,8 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                         addr = self.b.ins().iadd_imm(addr, off.max(0) as i64);
                     } else {
                         for (k, (e, lo, hi)) in idx.iter().enumerate() {
+                            // An index range analysis proves needs no check.
+                            let proven = self.proven.contains(e);
                             // A checked index reports its own position.
                             let (at, e) = e.located();
                             let site = match at {
@@ -1400,7 +1407,11 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                             let i = self.index_value(e)?;
                             let lo = (*lo).clamp(i64::MIN as i128, i64::MAX as i128) as i64;
                             let hi = (*hi).clamp(i64::MIN as i128, i64::MAX as i128) as i64;
-                            if fixed {
+                            if proven {
+                                // A check that cannot fail: leaving it out
+                                // changes no fault's order.
+                                fixed = false;
+                            } else if fixed {
                                 pending = Some((i, lo, hi, site, unsigned));
                                 fixed = false;
                             } else {

@@ -48,6 +48,8 @@ struct Func {
     /// Control variables of enclosing FOR loops with constant bounds, and
     /// the range they stay in inside the loop body.
     ranges: Vec<(VarId, i128, i128)>,
+    /// The indices range analysis proves inside their bounds.
+    proven: stc_ir::ranges::Proven,
     next_label: u32,
 }
 
@@ -490,6 +492,7 @@ impl<'a> Gen<'a> {
             pou: p,
             function,
             depth: 1,
+            proven: stc_ir::ranges::Proven::of(m, pou),
             ..Func::default()
         };
         let line = pou.body.first().map_or(1, |s| s.line);
@@ -992,12 +995,14 @@ impl<'a> Gen<'a> {
                     let unchecked = |g: &Self, e: &stc_ir::Expr, lo: i128, hi: i128| {
                         matches!(e.kind, ExprKind::Const(Value::Int(_)))
                             || stc_ir::faults::index_in_range(e, &g.f.ranges, lo, hi)
+                            || g.f.proven.contains(e)
                     };
                     let signed = idx.iter().all(|(e, lo, hi)| unchecked(self, e, *lo, *hi));
                     let mut flat = Vec::new();
                     let mut checks = Vec::new();
                     for (k, (e, lo, hi)) in idx.iter().enumerate() {
                         let mult: i128 = counts[k + 1..].iter().product();
+                        let proven = self.f.proven.contains(e);
                         // A checked index reports its own position.
                         let (at, e) = e.located();
                         if let ExprKind::Const(Value::Int(i)) = &e.kind {
@@ -1010,7 +1015,8 @@ impl<'a> Gen<'a> {
                             });
                             continue;
                         }
-                        let known = stc_ir::faults::index_in_range(e, &self.f.ranges, *lo, *hi);
+                        let known =
+                            proven || stc_ir::faults::index_in_range(e, &self.f.ranges, *lo, *hi);
                         let i = self.expr(e)?;
                         if known && signed {
                             let k_t = self.new_temp("int64_t".into());

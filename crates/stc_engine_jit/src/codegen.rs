@@ -2117,106 +2117,19 @@ impl SpanLineCol for stc_ir::Pou {
 }
 
 /// Which variables of POU `p` the JIT holds in registers inside one
-/// execution of its body, and which of those the body assigns. A variable
-/// qualifies when it is a scalar stored in the instance or the frame (not
-/// through a reference) and the body only reads it whole and assigns it
-/// whole, with a value of its own width: never indexes or selects a bit
-/// of it, never takes its reference, binds it to an in-out or names it as
-/// an output target. A body that dereferences anything, names `THIS` or
-/// uses a reference variable (VAR_IN_OUT, VAR_EXTERNAL) keeps everything in
-/// memory, since one of those might be an alias of its own variables.
-/// Calls are handled where they are made (flushed before, reloaded after).
+/// execution of its body ([`stc_ir::visit::register_vars`]): scalars
+/// (a reference is a 4-byte address) assigned only values of their own
+/// width.
 fn promotable(
     m: &Module,
     p: PouId,
     scalar: impl Fn(TypeId) -> Option<ElemType>,
 ) -> (Vec<bool>, Vec<bool>) {
-    let pou = &m.pous[p];
-    let n = pou.vars.len();
-    let mut ok: Vec<bool> = pou
-        .vars
-        .ids()
-        .map(|v| {
-            let var = &pou.vars[v];
-            var.storage != Storage::Ref && scalar(var.ty).is_some()
-        })
-        .collect();
-    let mut written = vec![false; n];
-    let mut aliased = false;
-    let mut whole = vec![0usize; n];
-    let mut named = vec![0usize; n];
-    // Every place the body names; those read or assigned whole are
-    // counted again below, so a variable named anywhere else is excluded.
-    stc_ir::visit::walk(
-        &pou.body,
-        &mut |e| {
-            if let ExprKind::Load(pl) = &e.kind {
-                if let (Root::Var(v), true) = (&pl.root, pl.proj.is_empty()) {
-                    whole[v.index()] += 1;
-                }
-            }
-        },
-        &mut |pl| match &pl.root {
-            Root::Var(v) => {
-                named[v.index()] += 1;
-                if pou.vars[*v].storage == Storage::Ref {
-                    aliased = true;
-                }
-            }
-            Root::Deref(_) | Root::This => aliased = true,
-            Root::Global(_) | Root::Direct(_) => {}
-        },
-    );
-    fn assigned(
-        stmts: &[Stmt],
-        scalar: &dyn Fn(TypeId) -> Option<ElemType>,
-        whole: &mut [usize],
-        written: &mut [bool],
-        ok: &mut [bool],
+    stc_ir::visit::register_vars(m, p, &|t| scalar(t).is_some(), &|a, b| match (
+        scalar(a),
+        scalar(b),
     ) {
-        for s in stmts {
-            match &s.kind {
-                StmtKind::Assign { place, value } => {
-                    if let (Root::Var(v), true) = (&place.root, place.proj.is_empty()) {
-                        let i = v.index();
-                        whole[i] += 1;
-                        written[i] = true;
-                        let same = match (scalar(place.ty), scalar(value.ty)) {
-                            (Some(a), Some(b)) => cl_type(a) == cl_type(b),
-                            _ => false,
-                        };
-                        if !same {
-                            ok[i] = false;
-                        }
-                    }
-                }
-                StmtKind::If {
-                    then_body,
-                    else_body,
-                    ..
-                } => {
-                    assigned(then_body, scalar, whole, written, ok);
-                    assigned(else_body, scalar, whole, written, ok);
-                }
-                StmtKind::Switch { arms, default, .. } => {
-                    for a in arms {
-                        assigned(&a.body, scalar, whole, written, ok);
-                    }
-                    assigned(default, scalar, whole, written, ok);
-                }
-                StmtKind::Loop { body, latch } => {
-                    assigned(body, scalar, whole, written, ok);
-                    assigned(latch, scalar, whole, written, ok);
-                }
-                _ => {}
-            }
-        }
-    }
-    assigned(&pou.body, &scalar, &mut whole, &mut written, &mut ok);
-    for i in 0..n {
-        if aliased || whole[i] != named[i] {
-            ok[i] = false;
-        }
-    }
-    (ok, written)
+        (Some(a), Some(b)) => cl_type(a) == cl_type(b),
+        _ => false,
+    })
 }

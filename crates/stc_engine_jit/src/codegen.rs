@@ -2022,19 +2022,22 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         }
         let this = self.iconst(I64, 0);
         self.call_body(func, this, cf)?;
+        // The result is taken before the outputs are copied: a call in the
+        // index of an output's target reuses this frame.
+        let result = match callee.result {
+            Some(r) => {
+                let addr = self.b.ins().iadd_imm(cf, i64::from(lay.offsets[r]));
+                let v = self.load_place(&PlaceAt { addr, part: None }, callee.vars[r].ty)?;
+                self.keep(v, ty, true)
+            }
+            None => V::S(self.iconst(I8, 0)),
+        };
         for o in outputs {
             let var = &callee.vars[o.var];
             let addr = self.b.ins().iadd_imm(cf, i64::from(lay.offsets[o.var]));
             self.copy_out(addr, var.ty, o)?;
         }
-        match callee.result {
-            Some(r) => {
-                let addr = self.b.ins().iadd_imm(cf, i64::from(lay.offsets[r]));
-                let v = self.load_place(&PlaceAt { addr, part: None }, callee.vars[r].ty)?;
-                Ok(self.keep(v, ty, true))
-            }
-            None => Ok(V::S(self.iconst(I8, 0))),
-        }
+        Ok(result)
     }
 
     /// Copies an output parameter at model address `src` into its `=>`
@@ -2051,6 +2054,10 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
             if let V::S(x) = v {
                 v = V::S(self.b.ins().icmp_imm(IntCC::Equal, x, 0));
             }
+        }
+        // A call in the target's index may reuse the frame the value is in.
+        if stc_ir::visit::place_has_call(&o.target) {
+            v = self.keep(v, src_ty, true);
         }
         let tt = o.target.ty;
         let (f, t) = (self.g.m.types.scalar(src_ty), self.g.m.types.scalar(tt));

@@ -364,15 +364,20 @@ impl Walk<'_> {
                 then_body,
                 else_body,
             } => {
-                if has_call(cond) {
+                // A condition that calls says nothing: the call may change
+                // a variable after the condition read it.
+                let called = has_call(cond);
+                if called {
                     env.facts.clear();
                 } else {
                     self.expr(cond, env, at);
                 }
                 let mut t = env.clone();
-                self.refine(cond, true, &mut t);
                 let mut e = env.clone();
-                self.refine(cond, false, &mut e);
+                if !called {
+                    self.refine(cond, true, &mut t);
+                    self.refine(cond, false, &mut e);
+                }
                 let t = self.block(then_body, &mut t, at).then_some(t);
                 let e = self.block(else_body, &mut e, at).then_some(e);
                 match Env::join(t, e) {

@@ -21,7 +21,7 @@ use cranelift_codegen::ir::{
 };
 use cranelift_codegen::isa::TargetFrontendConfig;
 use cranelift_codegen::settings::{self, Configurable};
-use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
+use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext, Variable};
 use cranelift_jit::{ArenaMemoryProvider, JITBuilder, JITModule};
 use cranelift_module::{FuncId, Linkage, Module as _};
 use rustc_hash::FxHashMap;
@@ -635,6 +635,15 @@ struct Fx<'g, 'a, 'm, 'f> {
     ret_block: Block,
     loops: Vec<(Block, Block)>,
     funcs: FxHashMap<FuncId, FuncRef>,
+    /// By variable of this POU: the SSA variable holding it, when it is
+    /// held in a register inside the body (see [`promotable`]).
+    regs: Vec<Option<(Variable, Type)>>,
+    /// By variable: whether the body assigns it (what is stored back).
+    written: Vec<bool>,
+    /// The watchdog steps left, held in a register inside the body.
+    steps: Option<Variable>,
+    /// The indices range analysis proves inside their bounds (unchecked).
+    proven: stc_ir::ranges::Proven,
 }
 
 impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
@@ -653,6 +662,8 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         b.append_block_param(fault_block, I32);
         let prop_block = b.create_block();
         let ret_block = b.create_block();
+        let m: &'m Module = g.m;
+        let proven = stc_ir::ranges::Proven::of(m, &m.pous[p]);
         Fx {
             g,
             module,
@@ -668,6 +679,83 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
             ret_block,
             loops: Vec::new(),
             funcs: FxHashMap::default(),
+            regs: Vec::new(),
+            written: Vec::new(),
+            steps: None,
+            proven,
+        }
+    }
+
+    /// Gives the promotable scalars of this POU their SSA variables,
+    /// loaded from memory, and the watchdog count its register.
+    fn promote(&mut self) {
+        let pou = &self.g.m.pous[self.p];
+        let (ok, written) = promotable(self.g.m, self.p, |t| self.scalar(t));
+        self.regs = vec![None; ok.len()];
+        self.written = written;
+        for v in pou.vars.ids() {
+            if !ok[v.index()] {
+                continue;
+            }
+            let Some(e) = self.scalar(pou.vars[v].ty) else {
+                continue;
+            };
+            let var = self.b.declare_var(cl_type(e));
+            self.regs[v.index()] = Some((var, cl_type(e)));
+        }
+        let st = self.b.declare_var(I64);
+        self.steps = Some(st);
+        self.reload();
+    }
+
+    /// Stores the registers the body assigns (and the watchdog count)
+    /// back to memory: before a call, at every exit.
+    fn flush(&mut self) {
+        for i in 0..self.regs.len() {
+            let Some((var, _)) = self.regs[i] else {
+                continue;
+            };
+            if !self.written[i] {
+                continue;
+            }
+            let x = self.b.use_var(var);
+            let a = self.var_addr(VarId::new(i));
+            let ptr = self.native(a);
+            self.b.ins().store(MemFlags::new(), x, ptr, 0);
+        }
+        if let Some(st) = self.steps {
+            let x = self.b.use_var(st);
+            self.b
+                .ins()
+                .store(MemFlags::trusted(), x, self.ctx, CTX_STEPS);
+        }
+    }
+
+    /// Loads every register from memory: at entry, after a call.
+    fn reload(&mut self) {
+        for i in 0..self.regs.len() {
+            let Some((var, t)) = self.regs[i] else {
+                continue;
+            };
+            let a = self.var_addr(VarId::new(i));
+            let ptr = self.native(a);
+            let x = self.b.ins().load(t, MemFlags::new(), ptr, 0);
+            self.b.def_var(var, x);
+        }
+        if let Some(st) = self.steps {
+            let x = self
+                .b
+                .ins()
+                .load(I64, MemFlags::trusted(), self.ctx, CTX_STEPS);
+            self.b.def_var(st, x);
+        }
+    }
+
+    /// The register of a place that is a whole promoted variable.
+    fn reg_of(&self, p: &Place) -> Option<(Variable, Type)> {
+        match (&p.root, p.proj.is_empty()) {
+            (Root::Var(v), true) => self.regs.get(v.index()).copied().flatten(),
+            _ => None,
         }
     }
 
@@ -682,10 +770,12 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                 self.copy(d, s, len);
             }
         }
+        self.promote();
         self.block(&pou.body)?;
         self.b.ins().jump(self.ret_block, &[]);
         // Exits.
         self.b.switch_to_block(self.ret_block);
+        self.flush();
         let z = self.b.ins().iconst(I32, 0);
         self.b.ins().return_(&[z]);
         // A fault from a callee: the innermost function block or program
@@ -710,6 +800,8 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         let one = self.b.ins().iconst(I32, 1);
         self.b.ins().return_(&[one]);
         self.b.switch_to_block(self.fault_block);
+        // The report after a fault shows every assignment made before it.
+        self.flush();
         let kp = self.b.block_params(self.fault_block).to_vec();
         self.b
             .ins()
@@ -834,18 +926,17 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         self.b.switch_to_block(cont);
     }
 
-    /// One watchdog step.
+    /// One watchdog step: a decrement of the register holding the count
+    /// (stored to the context before calls and at the exits).
     fn step(&mut self) {
-        let s = self
-            .b
-            .ins()
-            .load(I64, MemFlags::trusted(), self.ctx, CTX_STEPS);
+        let Some(st) = self.steps else {
+            return;
+        };
+        let s = self.b.use_var(st);
         let out = self.b.ins().icmp_imm(IntCC::Equal, s, 0);
         self.fault_if(out, FaultKind::Watchdog);
         let s1 = self.b.ins().iadd_imm(s, -1);
-        self.b
-            .ins()
-            .store(MemFlags::trusted(), s1, self.ctx, CTX_STEPS);
+        self.b.def_var(st, s1);
     }
 
     fn stack_slot(&mut self, size: u32) -> CVal {
@@ -951,7 +1042,10 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         self.site = self.site_of((s.line, s.col));
         match &s.kind {
             StmtKind::Assign { place, value } => {
-                if stc_ir::visit::has_call(value) {
+                if let Some(var) = self.reg_of(place) {
+                    let v = self.expr(value)?;
+                    self.def_reg(var, place, v)?;
+                } else if stc_ir::visit::has_call(value) {
                     let pl = self.place(place)?;
                     let v = self.expr(value)?;
                     self.store(&pl, v, value.ty, place.ty)?;
@@ -1103,6 +1197,24 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
             self.b.ins().jump(end, &[]);
         }
         self.b.switch_to_block(end);
+        Ok(())
+    }
+
+    /// Assigns a promoted variable (through memory if the value's width
+    /// is not the register's: what a store would do).
+    fn def_reg(&mut self, (var, want): (Variable, Type), place: &Place, v: V) -> Result<(), Error> {
+        let V::S(x) = v else {
+            return Err(internal("a promoted variable given a non-scalar"));
+        };
+        if self.b.func.dfg.value_type(x) == want {
+            self.b.def_var(var, x);
+        } else {
+            let pl = self.place(place)?;
+            let ptr = self.native(pl.addr);
+            self.b.ins().store(MemFlags::new(), x, ptr, 0);
+            let y = self.b.ins().load(want, MemFlags::new(), ptr, 0);
+            self.b.def_var(var, y);
+        }
         Ok(())
     }
 
@@ -1280,6 +1392,8 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                         addr = self.b.ins().iadd_imm(addr, off.max(0) as i64);
                     } else {
                         for (k, (e, lo, hi)) in idx.iter().enumerate() {
+                            // An index range analysis proves needs no check.
+                            let proven = self.proven.contains(e);
                             // A checked index reports its own position.
                             let (at, e) = e.located();
                             let site = match at {
@@ -1293,7 +1407,11 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                             let i = self.index_value(e)?;
                             let lo = (*lo).clamp(i64::MIN as i128, i64::MAX as i128) as i64;
                             let hi = (*hi).clamp(i64::MIN as i128, i64::MAX as i128) as i64;
-                            if fixed {
+                            if proven {
+                                // A check that cannot fail: leaving it out
+                                // changes no fault's order.
+                                fixed = false;
+                            } else if fixed {
                                 pending = Some((i, lo, hi, site, unsigned));
                                 fixed = false;
                             } else {
@@ -1457,6 +1575,9 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         match &e.kind {
             ExprKind::Const(v) => self.konst(e.ty, v),
             ExprKind::Load(p) => {
+                if let Some((var, _)) = self.reg_of(p) {
+                    return Ok(V::S(self.b.use_var(var)));
+                }
                 let pl = self.place(p)?;
                 self.load_place(&pl, e.ty)
             }
@@ -1840,11 +1961,15 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         let id =
             self.g.ids[callee.index()].ok_or_else(|| internal("a call of a POU not compiled"))?;
         let f = self.func(id);
+        // The callee may observe (through a reference) or change any
+        // variable: memory is made exact before, registers reloaded after.
+        self.flush();
         let call = self.b.ins().call(f, &[self.ctx, self.base, this, frame]);
         let st = self.b.inst_results(call)[0];
         let cont = self.b.create_block();
         self.b.ins().brif(st, self.prop_block, &[], cont, &[]);
         self.b.switch_to_block(cont);
+        self.reload();
         Ok(())
     }
 
@@ -1897,19 +2022,22 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         }
         let this = self.iconst(I64, 0);
         self.call_body(func, this, cf)?;
+        // The result is taken before the outputs are copied: a call in the
+        // index of an output's target reuses this frame.
+        let result = match callee.result {
+            Some(r) => {
+                let addr = self.b.ins().iadd_imm(cf, i64::from(lay.offsets[r]));
+                let v = self.load_place(&PlaceAt { addr, part: None }, callee.vars[r].ty)?;
+                self.keep(v, ty, true)
+            }
+            None => V::S(self.iconst(I8, 0)),
+        };
         for o in outputs {
             let var = &callee.vars[o.var];
             let addr = self.b.ins().iadd_imm(cf, i64::from(lay.offsets[o.var]));
             self.copy_out(addr, var.ty, o)?;
         }
-        match callee.result {
-            Some(r) => {
-                let addr = self.b.ins().iadd_imm(cf, i64::from(lay.offsets[r]));
-                let v = self.load_place(&PlaceAt { addr, part: None }, callee.vars[r].ty)?;
-                Ok(self.keep(v, ty, true))
-            }
-            None => Ok(V::S(self.iconst(I8, 0))),
-        }
+        Ok(result)
     }
 
     /// Copies an output parameter at model address `src` into its `=>`
@@ -1926,6 +2054,10 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
             if let V::S(x) = v {
                 v = V::S(self.b.ins().icmp_imm(IntCC::Equal, x, 0));
             }
+        }
+        // A call in the target's index may reuse the frame the value is in.
+        if stc_ir::visit::place_has_call(&o.target) {
+            v = self.keep(v, src_ty, true);
         }
         let tt = o.target.ty;
         let (f, t) = (self.g.m.types.scalar(src_ty), self.g.m.types.scalar(tt));
@@ -1989,4 +2121,22 @@ impl SpanLineCol for stc_ir::Pou {
             self.body.first().map_or(0, |s| s.col),
         )
     }
+}
+
+/// Which variables of POU `p` the JIT holds in registers inside one
+/// execution of its body ([`stc_ir::visit::register_vars`]): scalars
+/// (a reference is a 4-byte address) assigned only values of their own
+/// width.
+fn promotable(
+    m: &Module,
+    p: PouId,
+    scalar: impl Fn(TypeId) -> Option<ElemType>,
+) -> (Vec<bool>, Vec<bool>) {
+    stc_ir::visit::register_vars(m, p, &|t| scalar(t).is_some(), &|a, b| match (
+        scalar(a),
+        scalar(b),
+    ) {
+        (Some(a), Some(b)) => cl_type(a) == cl_type(b),
+        _ => false,
+    })
 }

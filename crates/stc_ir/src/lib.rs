@@ -40,6 +40,7 @@ pub mod faults;
 pub mod layout;
 mod lower;
 pub mod model;
+pub mod ranges;
 pub mod visit;
 
 use stc_diagnostics::Span;

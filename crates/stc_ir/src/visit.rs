@@ -6,7 +6,10 @@
 
 use stc_sema::{PouId, VarId};
 
-use crate::{Expr, ExprKind, Place, Proj, Root, Stmt, StmtKind};
+use stc_sema::idx::Idx;
+use stc_sema::TypeId;
+
+use crate::{Expr, ExprKind, Module, Place, Proj, Root, Stmt, StmtKind, Storage};
 
 /// Every expression of a body, in evaluation order, including those inside
 /// places (indices) and nested calls, and every place named.
@@ -187,6 +190,111 @@ pub fn place_has_call(p: &Place) -> bool {
         Proj::Index(idx) => idx.iter().any(|(e, _, _)| has_call(e)),
         _ => false,
     })
+}
+
+/// Which variables of POU `p` a back end may hold in registers (SSA
+/// values, C locals) inside one execution of its body, and which of those
+/// the body assigns (what it must store back: before a call, at every
+/// exit, the fault exits included). A variable qualifies when it is a
+/// `scalar` stored in the instance or the frame (not through a reference)
+/// and the body only reads it whole and assigns it whole, with a value
+/// `same` says it can take as is: never indexes or selects a bit of it,
+/// never takes its reference, binds it to an in-out or names it as an
+/// output target. A body that dereferences anything, names `THIS` or uses
+/// a reference variable (VAR_IN_OUT, VAR_EXTERNAL) keeps everything in
+/// memory, since one of those might be an alias of its own variables.
+/// Calls are the back end's to handle (store before, reload after: a
+/// callee may reach the variables through a reference).
+pub fn register_vars(
+    m: &Module,
+    p: PouId,
+    scalar: &dyn Fn(TypeId) -> bool,
+    same: &dyn Fn(TypeId, TypeId) -> bool,
+) -> (Vec<bool>, Vec<bool>) {
+    let pou = &m.pous[p];
+    let n = pou.vars.len();
+    let mut ok: Vec<bool> = pou
+        .vars
+        .ids()
+        .map(|v| {
+            let var = &pou.vars[v];
+            var.storage != Storage::Ref && scalar(var.ty)
+        })
+        .collect();
+    let mut written = vec![false; n];
+    let mut aliased = false;
+    let mut whole = vec![0usize; n];
+    let mut named = vec![0usize; n];
+    // Every place the body names; those read or assigned whole are
+    // counted again below, so a variable named anywhere else is excluded.
+    walk(
+        &pou.body,
+        &mut |e| {
+            if let ExprKind::Load(pl) = &e.kind {
+                if let (Root::Var(v), true) = (&pl.root, pl.proj.is_empty()) {
+                    whole[v.index()] += 1;
+                }
+            }
+        },
+        &mut |pl| match &pl.root {
+            Root::Var(v) => {
+                named[v.index()] += 1;
+                if pou.vars[*v].storage == Storage::Ref {
+                    aliased = true;
+                }
+            }
+            Root::Deref(_) | Root::This => aliased = true,
+            Root::Global(_) | Root::Direct(_) => {}
+        },
+    );
+    fn assigned(
+        stmts: &[Stmt],
+        same: &dyn Fn(TypeId, TypeId) -> bool,
+        whole: &mut [usize],
+        written: &mut [bool],
+        ok: &mut [bool],
+    ) {
+        for s in stmts {
+            match &s.kind {
+                StmtKind::Assign { place, value } => {
+                    if let (Root::Var(v), true) = (&place.root, place.proj.is_empty()) {
+                        let i = v.index();
+                        whole[i] += 1;
+                        written[i] = true;
+                        if !same(place.ty, value.ty) {
+                            ok[i] = false;
+                        }
+                    }
+                }
+                StmtKind::If {
+                    then_body,
+                    else_body,
+                    ..
+                } => {
+                    assigned(then_body, same, whole, written, ok);
+                    assigned(else_body, same, whole, written, ok);
+                }
+                StmtKind::Switch { arms, default, .. } => {
+                    for a in arms {
+                        assigned(&a.body, same, whole, written, ok);
+                    }
+                    assigned(default, same, whole, written, ok);
+                }
+                StmtKind::Loop { body, latch } => {
+                    assigned(body, same, whole, written, ok);
+                    assigned(latch, same, whole, written, ok);
+                }
+                _ => {}
+            }
+        }
+    }
+    assigned(&pou.body, same, &mut whole, &mut written, &mut ok);
+    for i in 0..n {
+        if aliased || whole[i] != named[i] || named[i] == 0 {
+            ok[i] = false;
+        }
+    }
+    (ok, written)
 }
 
 #[cfg(test)]

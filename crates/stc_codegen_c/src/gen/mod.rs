@@ -48,6 +48,13 @@ struct Func {
     /// Control variables of enclosing FOR loops with constant bounds, and
     /// the range they stay in inside the loop body.
     ranges: Vec<(VarId, i128, i128)>,
+    /// The indices range analysis proves inside their bounds.
+    proven: stc_ir::ranges::Proven,
+    /// By variable: the C local holding it inside the body, when it is
+    /// held in one (`stc_ir::visit::register_vars`), and whether the body
+    /// assigns it (then it is stored back before calls and at exits).
+    locals: Vec<Option<String>>,
+    written: Vec<bool>,
     next_label: u32,
 }
 
@@ -494,6 +501,7 @@ impl<'a> Gen<'a> {
             pou: p,
             function,
             depth: 1,
+            proven: stc_ir::ranges::Proven::of(m, pou),
             ..Func::default()
         };
         let line = pou.body.first().map_or(1, |s| s.line);
@@ -521,12 +529,16 @@ impl<'a> Gen<'a> {
                 self.line(format!("(void){lv};"));
             }
         }
+        self.declare_locals(p);
         // The watchdog's step after the initial values: a function stopped
         // here still hands back an initialised frame (no uninitialised read
         // in the caller, which leaves at once anyway).
         let bail = self.bail();
         self.line(format!("if (stc_step({entry_site}U) != 0U) {{ {bail} }}"));
         self.block(&pou.body)?;
+        for l in self.flush_lines() {
+            self.line(l);
+        }
         let sig = self.signature(p);
         let mut out = format!("{sig}\n{{\n");
         for d in &self.f.decls {
@@ -540,6 +552,74 @@ impl<'a> Gen<'a> {
         }
         self.finish_function(out);
         Ok(())
+    }
+
+    /// Holds the scalars of the body in C locals (as a C programmer keeps
+    /// `i`, `j`, `tmp` in registers: gcc cannot, for a struct member that
+    /// a store into an array of the same struct may alias), loaded here.
+    fn declare_locals(&mut self, p: PouId) {
+        let m = self.m;
+        let pou = &m.pous[p];
+        let scalar = |t: TypeId| {
+            matches!(
+                m.types.kind(t),
+                TypeKind::Elem(_) | TypeKind::Subrange { .. } | TypeKind::Enum { .. }
+            ) && !matches!(
+                m.types.scalar(t),
+                None | Some(ElemType::String | ElemType::Wstring)
+            )
+        };
+        let (ok, written) = stc_ir::visit::register_vars(m, p, &scalar, &|_, _| true);
+        self.f.locals = vec![None; ok.len()];
+        self.f.written = written;
+        for (i, v) in pou.vars.iter_enumerated() {
+            // An FB's or program's VAR_TEMP is a C local already.
+            if !ok[i.index()] || (!self.f.function && v.storage == Storage::Frame) {
+                continue;
+            }
+            let name = format!("l_{}", names::var_name(m, i, v));
+            self.f
+                .decls
+                .push(format!("{} {name};", names::type_name(m, v.ty)));
+            let mem = self.mem_lvalue(i);
+            self.line(format!("{name} = {mem};"));
+            self.f.locals[i.index()] = Some(name);
+        }
+    }
+
+    /// Stores the locals the body assigns back to their variables.
+    fn flush_lines(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        for (i, l) in self.f.locals.iter().enumerate() {
+            if let (Some(l), true) = (l, self.f.written.get(i).copied().unwrap_or(true)) {
+                out.push(format!("{} = {l};", self.mem_lvalue(VarId::new(i))));
+            }
+        }
+        out
+    }
+
+    /// Reloads every local from its variable (after a call).
+    fn reload_lines(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        for (i, l) in self.f.locals.iter().enumerate() {
+            if let Some(l) = l {
+                out.push(format!("{l} = {};", self.mem_lvalue(VarId::new(i))));
+            }
+        }
+        out
+    }
+
+    /// A call of a body at `call` (a C statement), the locals stored
+    /// before it and reloaded after it: the callee may reach them through
+    /// a reference.
+    fn call_line(&mut self, call: String) {
+        for l in self.flush_lines() {
+            self.line(l);
+        }
+        self.line(call);
+        for l in self.reload_lines() {
+            self.line(l);
+        }
     }
 
     /// The check after a call of POU `p`: the full fault check when it may
@@ -591,11 +671,16 @@ impl<'a> Gen<'a> {
     /// body first says the fault happened in its instance (unless a
     /// deeper one said so).
     fn bail(&self) -> String {
-        if self.f.function {
-            "return;".into()
-        } else {
-            format!("stc_fault_in(self, {}U); return;", self.f.pou.0)
+        let mut out = self.flush_lines().join(" ");
+        if !out.is_empty() {
+            out.push(' ');
         }
+        if self.f.function {
+            out.push_str("return;");
+        } else {
+            let _ = write!(out, "stc_fault_in(self, {}U); return;", self.f.pou.0);
+        }
+        out
     }
 
     fn fault_return(&mut self) {
@@ -748,6 +833,9 @@ impl<'a> Gen<'a> {
                 Ok(())
             }
             StmtKind::Return => {
+                for l in self.flush_lines() {
+                    self.line(l);
+                }
                 self.line("return;".into());
                 Ok(())
             }
@@ -763,8 +851,17 @@ impl<'a> Gen<'a> {
 
     // ----- places -----------------------------------------------------------
 
-    /// The C lvalue of a variable of the current POU.
+    /// The C lvalue of a variable of the current POU: its local, when
+    /// the body holds it in one.
     fn var_lvalue(&self, v: VarId) -> String {
+        if let Some(Some(l)) = self.f.locals.get(v.index()) {
+            return l.clone();
+        }
+        self.mem_lvalue(v)
+    }
+
+    /// The C lvalue of a variable of the current POU in memory.
+    fn mem_lvalue(&self, v: VarId) -> String {
         let m = self.m;
         let pou = &m.pous[self.f.pou];
         let var = pou.var(v);
@@ -996,12 +1093,14 @@ impl<'a> Gen<'a> {
                     let unchecked = |g: &Self, e: &stc_ir::Expr, lo: i128, hi: i128| {
                         matches!(e.kind, ExprKind::Const(Value::Int(_)))
                             || stc_ir::faults::index_in_range(e, &g.f.ranges, lo, hi)
+                            || g.f.proven.contains(e)
                     };
                     let signed = idx.iter().all(|(e, lo, hi)| unchecked(self, e, *lo, *hi));
                     let mut flat = Vec::new();
                     let mut checks = Vec::new();
                     for (k, (e, lo, hi)) in idx.iter().enumerate() {
                         let mult: i128 = counts[k + 1..].iter().product();
+                        let proven = self.f.proven.contains(e);
                         // A checked index reports its own position.
                         let (at, e) = e.located();
                         if let ExprKind::Const(Value::Int(i)) = &e.kind {
@@ -1014,7 +1113,8 @@ impl<'a> Gen<'a> {
                             });
                             continue;
                         }
-                        let known = stc_ir::faults::index_in_range(e, &self.f.ranges, *lo, *hi);
+                        let known =
+                            proven || stc_ir::faults::index_in_range(e, &self.f.ranges, *lo, *hi);
                         let i = self.expr(e)?;
                         if known && signed {
                             let k_t = self.new_temp("int64_t".into());
@@ -1414,7 +1514,7 @@ impl<'a> Gen<'a> {
             let lv = self.place(pl, None)?;
             self.line(format!("{fr}.{} = &{lv};", names::var_name(m, *v, var)));
         }
-        self.line(format!("{}(&{fr});", names::body_name(m, p)));
+        self.call_line(format!("{}(&{fr});", names::body_name(m, p)));
         self.call_check(p);
         for o in outputs {
             let var = callee.var(o.var);
@@ -1492,7 +1592,7 @@ impl<'a> Gen<'a> {
                 names::var_name(m, *v, var)
             ));
         }
-        self.line(format!("{}({ptr});", names::body_name(m, p)));
+        self.call_line(format!("{}({ptr});", names::body_name(m, p)));
         self.call_check(p);
         for o in outputs {
             let var = fbp.var(o.var);

@@ -35,16 +35,19 @@ END_PROGRAM";
 
 #[test]
 fn e0302_says_why_the_conversion_is_not_implicit() {
-    let m = messages(CONVERSIONS, Options::default(), Code::E0302);
+    // Between integers and bit strings CODESYS converts implicitly: W0118
+    // by default, E0302 (saying why) with --std iec2.
+    let m = messages(CONVERSIONS, Options::default(), Code::W0118);
     assert_eq!(
         m,
         [
-            "no implicit conversion from BYTE to INT: bit strings and numbers convert only explicitly",
-            "implicit conversion from DINT to INT may lose information",
-            "no implicit conversion from UINT to WORD: bit strings and numbers convert only explicitly",
-            "implicit conversion from INT to SINT may lose information",
+            "implicit conversion from BYTE to INT, as CODESYS converts",
+            "implicit conversion from DINT to INT, as CODESYS converts",
+            "implicit conversion from UINT to WORD, as CODESYS converts",
+            "implicit conversion from INT to SINT, as CODESYS converts",
         ]
     );
+    assert!(messages(CONVERSIONS, Options::default(), Code::E0302).is_empty());
     let m = messages(CONVERSIONS, Options { iec2: true }, Code::E0302);
     assert!(
         m.contains(

@@ -489,11 +489,7 @@ impl<'a> Sema<'a> {
         }
         let internal_to = found.and_then(|(_, sym)| {
             let home = *self.ns.internal.get(&sym)?;
-            let home_key = self.interner.key(home);
-            let inside = scope.and_then(|s| s.inner).is_some_and(|inner| {
-                let k = self.interner.key(inner);
-                k == home_key || (k.starts_with(home_key) && k[home_key.len()..].starts_with('.'))
-            });
+            let inside = self.within(scope.and_then(|s| s.inner), self.interner.key(home));
             (!inside).then_some(home)
         });
         Found {
@@ -536,14 +532,19 @@ impl<'a> Sema<'a> {
         let Some(home) = self.namespace_of(p) else {
             return true;
         };
-        let home = home.to_ascii_uppercase();
-        self.ns
-            .scope_at(at.lo)
-            .and_then(|s| s.inner)
-            .is_some_and(|inner| {
-                let k = self.interner.key(inner);
-                k == home || (k.starts_with(&home) && k[home.len()..].starts_with('.'))
-            })
+        let inner = self.ns.scope_at(at.lo).and_then(|s| s.inner);
+        self.within(inner, &home.to_ascii_uppercase())
+    }
+
+    /// Whether a use whose innermost namespace is `inner` stands inside
+    /// the namespace of key `home` (or one nested in it): where what is
+    /// INTERNAL to `home` is visible.
+    fn within(&self, inner: Option<Symbol>, home: &str) -> bool {
+        inner.is_some_and(|inner| {
+            let k = self.interner.key(inner);
+            k.strip_prefix(home)
+                .is_some_and(|rest| rest.is_empty() || rest.starts_with('.'))
+        })
     }
 
     /// The global element of qualified name `key`, if one is declared.

@@ -713,6 +713,9 @@ impl<'a> Sema<'a> {
         let span = self.ast.expr(target).span;
         match self.types.compat(from, to, self.opts.iec2) {
             crate::Compat::Same | crate::Compat::Widen => {}
+            crate::Compat::Narrow if self.dialect_int_conversion(from, to) => {
+                self.dialect_conversion_warning(span, from, to);
+            }
             crate::Compat::Narrow => {
                 let (f, t) = (self.tname(from), self.tname(to));
                 let msg = match self.narrowing(from, to) {

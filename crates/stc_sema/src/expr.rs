@@ -2023,21 +2023,7 @@ impl<'a> Sema<'a> {
                 true
             }
             Compat::Narrow if self.dialect_int_conversion(from, to) => {
-                let (f, t) = (self.tname(from), self.tname(to));
-                let mut d = Diagnostic::new(
-                    Code::W0118,
-                    span,
-                    format!("implicit conversion from {f} to {t}, as CODESYS converts"),
-                )
-                .with_label(format!("this is {f}"));
-                if let (Some(a), Some(b)) = (self.types.numeric(from), self.types.numeric(to)) {
-                    d = d.with_help(format!(
-                        "write {}_TO_{}(...) if the conversion is meant",
-                        a.name(),
-                        b.name()
-                    ));
-                }
-                self.emit(d);
+                self.dialect_conversion_warning(span, from, to);
                 self.coercions.insert(e, to);
                 true
             }
@@ -2127,13 +2113,32 @@ impl<'a> Sema<'a> {
     /// Whether a narrowing conversion is one CODESYS makes implicitly and
     /// stc accepts with W0118: between integers and bit strings (not BOOL),
     /// outside `--std iec2`.
-    fn dialect_int_conversion(&self, from: TypeId, to: TypeId) -> bool {
+    pub(crate) fn dialect_int_conversion(&self, from: TypeId, to: TypeId) -> bool {
         let int_or_bits = |t: TypeId| {
             self.types.numeric(t).is_some_and(|e| {
                 e != ElemType::Bool && (stc_values::is_integer(e) || stc_values::is_bit_string(e))
             })
         };
         !self.opts.iec2 && int_or_bits(from) && int_or_bits(to)
+    }
+
+    /// W0118 for the conversion from `from` to `to` at `span`.
+    pub(crate) fn dialect_conversion_warning(&mut self, span: Span, from: TypeId, to: TypeId) {
+        let (f, t) = (self.tname(from), self.tname(to));
+        let mut d = Diagnostic::new(
+            Code::W0118,
+            span,
+            format!("implicit conversion from {f} to {t}, as CODESYS converts"),
+        )
+        .with_label(format!("this is {f}"));
+        if let (Some(a), Some(b)) = (self.types.numeric(from), self.types.numeric(to)) {
+            d = d.with_help(format!(
+                "write {}_TO_{}(...) if the conversion is meant",
+                a.name(),
+                b.name()
+            ));
+        }
+        self.emit(d);
     }
 
     /// Why a conversion that [`crate::types::TypeTable::compat`] calls

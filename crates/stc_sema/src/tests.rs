@@ -69,7 +69,8 @@ PROGRAM P VAR i : INT; END_VAR
   i := F(o => i);
   i := F(p => i);
 END_PROGRAM",
-        Options::default(),
+        // (Without --std iec2 these are W0118, as in assignments.)
+        Options { iec2: true },
         Code::E0302,
     );
     assert_eq!(

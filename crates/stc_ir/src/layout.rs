@@ -261,7 +261,10 @@ impl Layouts {
         }
         let mut area = Area::new();
         let mut objects: Vec<(Layout, Span, String)> = Vec::new();
-        for g in &m.globals {
+        // The user's globals first, then the library's, wherever the
+        // library's file sits among the user's.
+        let user_first = m.globals.iter().filter(|g| !g.library);
+        for g in user_first.chain(m.globals.iter().filter(|g| g.library)) {
             if g.location.as_ref().is_some_and(|a| !a.is_incomplete()) {
                 continue;
             }

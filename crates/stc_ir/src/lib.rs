@@ -226,6 +226,8 @@ pub struct Global {
     pub retain: bool,
     pub location: Option<DirectAddress>,
     pub span: Span,
+    /// Declared by the standard library (the prelude), not the user.
+    pub library: bool,
 }
 
 /// Where a variable lives.

@@ -190,10 +190,21 @@ pub struct Input<'a> {
 /// The findings of the lints that are on, in source order, each with the
 /// severity its level gives (a warning, or an error for `deny`).
 pub fn check(input: &Input<'_>, levels: &Levels) -> Vec<Diagnostic> {
+    check_within(input, levels, 0..u32::MAX)
+}
+
+/// [`check`] of the POUs and files that begin at a position in `within`
+/// only (what a language server lints again of a project whose other
+/// files did not change: the findings of the rest are the same).
+pub fn check_within(
+    input: &Input<'_>,
+    levels: &Levels,
+    within: std::ops::Range<u32>,
+) -> Vec<Diagnostic> {
     if levels.none() {
         return Vec::new();
     }
-    let mut found = rules::run(input, levels);
+    let mut found = rules::run(input, levels, &within);
     found.retain(|d| levels.get(d.code) != Level::Allow);
     for d in &mut found {
         if levels.get(d.code) == Level::Deny {

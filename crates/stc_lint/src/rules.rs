@@ -22,12 +22,12 @@ struct Unit<'a> {
     syn: &'a Pou,
 }
 
-pub fn run(input: &Input<'_>, levels: &Levels) -> Vec<Diagnostic> {
+pub fn run(input: &Input<'_>, levels: &Levels, within: &std::ops::Range<u32>) -> Vec<Diagnostic> {
     let on = |c: Code| levels.get(c) != Level::Allow;
     let units = units(input);
     let shared = Shared::new(input, &units);
     let mut out = Vec::new();
-    for u in &units {
+    for u in units.iter().filter(|u| within.contains(&u.syn.span.lo)) {
         if on(Code::L0001) || on(Code::L0002) || on(Code::L0007) {
             expression_rules(input, u, levels, &mut out);
         }
@@ -48,7 +48,7 @@ pub fn run(input: &Input<'_>, levels: &Levels) -> Vec<Diagnostic> {
         }
     }
     if on(Code::L0008) {
-        nested_comments(input, &mut out);
+        nested_comments(input, within, &mut out);
     }
     out
 }
@@ -550,10 +550,12 @@ fn case_without_else(input: &Input<'_>, u: &Unit<'_>, out: &mut Vec<Diagnostic>)
 }
 
 /// L0008: a `(*` comment inside another.
-fn nested_comments(input: &Input<'_>, out: &mut Vec<Diagnostic>) {
+fn nested_comments(input: &Input<'_>, within: &std::ops::Range<u32>, out: &mut Vec<Diagnostic>) {
     for (_, f) in input.sources.files() {
         let span = f.span();
-        if span.lo == input.prelude.lo && span.hi == input.prelude.hi {
+        if (span.lo == input.prelude.lo && span.hi == input.prelude.hi)
+            || !within.contains(&span.lo)
+        {
             continue;
         }
         if !may_nest(&f.text) {

@@ -44,8 +44,8 @@ impl Project {
         lints: Option<stc_lint::Levels>,
     ) -> Project {
         let analysed = stc_pipeline::with_big_stack(move || {
-            let (parsed, _, prelude) = stc_pipeline::incremental::parse_all(files, &opts);
-            stc_pipeline::analyse_parsed(parsed, prelude, &opts, lints.as_ref())
+            let (parsed, mark) = stc_pipeline::incremental::parse_all(files, &opts);
+            stc_pipeline::analyse_parsed(parsed, mark.prelude(), &opts, lints.as_ref())
         });
         Project { analysed }
     }

@@ -117,7 +117,27 @@ pub fn serve(
         published: BTreeMap::new(),
         analysed_once: false,
     };
-    for msg in &conn.receiver {
+    loop {
+        // The rest of the last analysis (lowering, the memory layout's
+        // E0901, freeing what is out of date) waits for a quiet moment: an
+        // edit that comes while the user types is analysed first.
+        let msg = if server.workspace.has_work() {
+            match conn.receiver.recv_timeout(QUIET) {
+                Ok(m) => m,
+                Err(e) if e.is_timeout() => {
+                    for m in server.finish_and_publish() {
+                        conn.sender.send(Message::Notification(m))?;
+                    }
+                    continue;
+                }
+                Err(_) => break,
+            }
+        } else {
+            match conn.receiver.recv() {
+                Ok(m) => m,
+                Err(_) => break,
+            }
+        };
         match msg {
             Message::Request(req) => {
                 if conn.handle_shutdown(&req)? {
@@ -135,16 +155,13 @@ pub fn serve(
             }
             Message::Response(_) => {}
         }
-        // With nothing waiting, the rest of the analysis (lowering, the
-        // memory layout's E0901) and freeing what is out of date.
-        if conn.receiver.is_empty() {
-            for m in server.finish_and_publish() {
-                conn.sender.send(Message::Notification(m))?;
-            }
-        }
     }
     Ok(())
 }
+
+/// How long the server waits without a message before it finishes the
+/// last analysis (about the pause between two keystrokes).
+const QUIET: std::time::Duration = std::time::Duration::from_millis(150);
 
 struct Server {
     /// Every file of the project: open documents (the editor's text) and

@@ -13,6 +13,13 @@
 //! An edit in another file, or a file added, is one full parse in the new
 //! order. The order matters only when two files declare the same name: the
 //! second declaration in the order is the duplicate (E0105).
+//!
+//! The analysis is incremental too: what it keeps of the files before the
+//! last ([`incremental::Kept`]: the analyser's state after them and their
+//! lints' findings) is reused while only the last file changes, so an edit
+//! declares and checks only that file (`stc_pipeline::incremental::check`
+//! falls back to the whole analysis when the edit could change what the
+//! other files mean).
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -29,6 +36,8 @@ pub struct Workspace {
     dirty: BTreeSet<String>,
     /// Where the files before the last one end in the last analysis.
     mark: Option<Mark>,
+    /// What the last analysis kept of the files before the last one.
+    kept: Option<incremental::Kept>,
     project: Option<Project>,
     /// The last analysis, until [`Workspace::finish`] lowers it.
     pending: Option<stc_pipeline::Pending>,
@@ -41,6 +50,8 @@ pub struct Workspace {
     lints: Option<stc_lint::Levels>,
     /// Whether the last analysis parsed only the last file.
     pub last_was_incremental: bool,
+    /// Whether the last analysis declared and checked only the last file.
+    pub last_was_resumed: bool,
 }
 
 impl Workspace {
@@ -57,6 +68,7 @@ impl Workspace {
             files,
             order: Vec::new(),
             mark: None,
+            kept: None,
             project: None,
             pending: None,
             old_module: None,
@@ -64,6 +76,7 @@ impl Workspace {
             opts,
             lints,
             last_was_incremental: false,
+            last_was_resumed: false,
         }
     }
 
@@ -114,17 +127,21 @@ impl Workspace {
         ) {
             if let Some(old) = self.project.take() {
                 let text = self.files.get(&last).cloned().unwrap_or_default();
-                let (analysed, pending, module) = stc_pipeline::with_big_stack(move || {
-                    let Analysed { parsed, module, .. } = old.into_analysed();
-                    let (parsed, prelude) =
-                        incremental::reparse_last(parsed, mark, last, text, &opts);
-                    let (a, p) = stc_pipeline::check_parsed(parsed, prelude, &opts, lints.as_ref());
-                    (a, p, module)
-                });
+                let kept = self.kept.take();
+                let (analysed, pending, kept, made, module) =
+                    stc_pipeline::with_big_stack(move || {
+                        let Analysed { parsed, module, .. } = old.into_analysed();
+                        let parsed = incremental::reparse_last(parsed, mark, last, text, &opts);
+                        let (a, p, k, m) =
+                            incremental::check(parsed, mark, &opts, lints.as_ref(), kept);
+                        (a, p, k, m, module)
+                    });
                 self.project = Some(Project::from_analysed(analysed));
                 self.pending = Some(pending);
+                self.kept = kept;
                 self.old_module = self.old_module.take().or(module);
                 self.last_was_incremental = true;
+                self.last_was_resumed = made == incremental::Made::Resumed;
                 // Freed here only when nothing else is to do.
                 self.stale = stale;
                 return;
@@ -148,23 +165,32 @@ impl Workspace {
         // memory of two large projects at once is not needed).
         self.project = None;
         self.old_module = None;
+        self.kept = None;
         drop(stale);
-        let (analysed, pending, mark) = stc_pipeline::with_big_stack(move || {
-            let (parsed, mark, prelude) = incremental::parse_all(files, &opts);
-            let (a, p) = stc_pipeline::check_parsed(parsed, prelude, &opts, lints.as_ref());
-            (a, p, mark)
+        let (analysed, pending, mark, kept, made) = stc_pipeline::with_big_stack(move || {
+            let (parsed, mark) = incremental::parse_all(files, &opts);
+            let (a, p, k, m) = incremental::check(parsed, mark, &opts, lints.as_ref(), None);
+            (a, p, mark, k, m)
         });
         self.project = Some(Project::from_analysed(analysed));
         self.pending = Some(pending);
         self.mark = Some(mark);
+        self.kept = kept;
         self.order = order;
         self.last_was_incremental = false;
+        self.last_was_resumed = made == incremental::Made::Resumed;
+    }
+
+    /// Whether [`Workspace::finish`] has something to do.
+    pub fn has_work(&self) -> bool {
+        self.pending.is_some() || self.old_module.is_some() || self.stale.is_some()
     }
 
     /// The rest of the last analysis: without errors, the project is
     /// lowered and its memory layout checked (E0901); what is out of date
     /// is freed. Returns whether the diagnostics changed. A server calls it
-    /// after publishing the analysis's diagnostics, when no message waits.
+    /// after publishing the analysis's diagnostics, when no message came
+    /// for a while.
     pub fn finish(&mut self) -> bool {
         self.old_module = None;
         self.stale = None;
@@ -230,11 +256,13 @@ mod tests {
         );
         ws.analyse();
         let mut incremental = 0;
+        let mut resumed = 0;
         for (i, text) in edits.iter().enumerate() {
             ws.set("file:///main.st".into(), text.clone());
             ws.analyse();
             ws.finish();
             incremental += usize::from(ws.last_was_incremental);
+            resumed += usize::from(ws.last_was_resumed);
             let files: Vec<(String, String)> = ws
                 .order()
                 .iter()
@@ -245,6 +273,9 @@ mod tests {
             assert_eq!(got, diagnostics(&full), "edit {i}");
         }
         assert!(incremental >= edits.len() - 1, "{incremental}");
+        // Declaring `Twice` again reaches the other file (its duplicate);
+        // every other edit is analysed from what the last one kept.
+        assert!(resumed >= edits.len() - 2, "{resumed}");
         // An edit of the other file is a full analysis in a new order.
         ws.set("file:///lib.st".into(), format!("{LIB}\n"));
         ws.analyse();

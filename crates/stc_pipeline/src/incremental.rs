@@ -1,16 +1,26 @@
-//! Parsing again only the file that changed (for a language server).
+//! Parsing and analysing again only the file that changed (for a
+//! language server).
 //!
 //! A project's files share one position space and one expression arena,
 //! both filled in file order, so the trees of the files before a given one
 //! never depend on it: they are a prefix of the arena, of the items and of
 //! the source map. A caller that keeps the file being edited last in its
-//! order ([`parse_all`] records where the others end, a [`Mark`]) can
-//! therefore cut the project back to the mark after an edit and parse only
-//! the new text of that file, and the prelude after it
-//! ([`reparse_last`]); the result is the parse a full [`crate::parse`] of
-//! the same files in the same order gives (the same trees, spans and
-//! expression ids; only the interner keeps the names of the texts it saw
-//! before).
+//! order parses every other file, then the prelude, then that file
+//! ([`parse_all`], which records where the last file starts: a [`Mark`]);
+//! after an edit it cuts the project back to the mark and parses only the
+//! new text ([`reparse_last`]). The result is the parse a full
+//! [`parse_all`] of the same files in the same order gives (the same
+//! trees, spans and expression ids; only the interner keeps the names of
+//! the texts it saw before).
+//!
+//! [`check`] then analyses the project in the same two parts: the
+//! analyser's state after the first (every file but the last, and the
+//! prelude) and the lints' findings there are [`Kept`] and reused while
+//! only the last file changes ([`stc_sema::Checkpoint`] says when that
+//! gives exactly the whole analysis, and makes the whole analysis when
+//! not). The prelude sits before the last file so that it is part of what
+//! is kept; the analyser declares the prelude's items after the user's
+//! wherever they sit, so the diagnostics are those of [`crate::analyse`].
 //!
 //! Call these inside [`crate::with_big_stack`].
 
@@ -20,7 +30,9 @@ use stc_syntax::Interner;
 
 use crate::{Options, Parsed};
 
-/// Where the trees of every file but the last end.
+pub use stc_sema::Made;
+
+/// Where the trees of every file but the last, and the prelude's, end.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Mark {
     files: usize,
@@ -28,6 +40,26 @@ pub struct Mark {
     exprs: usize,
     unsupported: usize,
     diagnostics: usize,
+    /// The prelude's span.
+    prelude: Span,
+    /// The spellings the last file had not given yet.
+    spelling: stc_syntax::intern::SpellingMark,
+}
+
+impl Mark {
+    /// Where the prelude is.
+    pub fn prelude(&self) -> Span {
+        self.prelude
+    }
+
+    fn split(&self) -> stc_sema::Split {
+        stc_sema::Split {
+            files: self.files,
+            items: self.items,
+            exprs: self.exprs,
+            unsupported: self.unsupported,
+        }
+    }
 }
 
 fn parse_one(parsed: &mut Parsed, name: String, text: String, opts: &Options) -> Option<Span> {
@@ -35,18 +67,23 @@ fn parse_one(parsed: &mut Parsed, name: String, text: String, opts: &Options) ->
     let f = parsed.sources.file(id);
     // The standard library (`<stdlib>`) is written in the 3rd edition.
     let iec2 = opts.iec2 && !f.name.starts_with('<');
+    // Its spellings give way to the user's (`Interner::library`).
+    parsed.interner.library = f.name.starts_with('<');
     let r = stc_syntax::parse_file_in(&f.text, f.base, &mut parsed.ast, &mut parsed.interner, iec2);
+    parsed.interner.library = false;
     parsed.diagnostics.extend(r.diagnostics);
     Some(f.span())
 }
 
-fn mark(parsed: &Parsed) -> Mark {
+fn mark(parsed: &Parsed, prelude: Span) -> Mark {
     Mark {
         files: parsed.sources.len(),
         items: parsed.ast.items.len(),
         exprs: parsed.ast.exprs.len(),
         unsupported: parsed.ast.unsupported_names.len(),
         diagnostics: parsed.diagnostics.len(),
+        prelude,
+        spelling: parsed.interner.spelling_mark(),
     }
 }
 
@@ -60,46 +97,135 @@ fn prelude(parsed: &mut Parsed, opts: &Options) -> Span {
     .expect("the prelude fits in the position space")
 }
 
-/// Parses the files (name, text) in order, then the prelude. Returns the
-/// parse, the mark after every file but the last, and the prelude's span.
-/// A file that does not fit in the 32-bit position space is left out.
-pub fn parse_all(files: Vec<(String, String)>, opts: &Options) -> (Parsed, Mark, Span) {
+/// Parses the files (name, text) in order, the prelude before the last.
+/// Returns the parse and the mark before the last file (where the
+/// prelude's span is). A file that does not fit in the 32-bit position
+/// space is left out.
+pub fn parse_all(mut files: Vec<(String, String)>, opts: &Options) -> (Parsed, Mark) {
     let mut parsed = Parsed {
         sources: SourceMap::new(),
         interner: Interner::new(),
         ast: Ast::default(),
         diagnostics: Vec::new(),
     };
-    let n = files.len();
-    let mut m = mark(&parsed);
-    for (i, (name, text)) in files.into_iter().enumerate() {
-        if i + 1 == n {
-            m = mark(&parsed);
-        }
+    let last = files.pop();
+    for (name, text) in files {
         let _ = parse_one(&mut parsed, name, text, opts);
     }
     let p = prelude(&mut parsed, opts);
-    (parsed, m, p)
+    let m = mark(&parsed, p);
+    if let Some((name, text)) = last {
+        let _ = parse_one(&mut parsed, name, text, opts);
+    }
+    (parsed, m)
 }
 
-/// Drops the last file and the prelude of a project [`parse_all`] (or this
-/// function) parsed, and parses the last file's new text (`name`, `text`)
-/// and the prelude again. Returns the parse and the prelude's span.
+/// Drops the last file of a project [`parse_all`] (or this function)
+/// parsed, and parses its new text (`name`, `text`).
 pub fn reparse_last(
     mut parsed: Parsed,
     mark: Mark,
     name: String,
     text: String,
     opts: &Options,
-) -> (Parsed, Span) {
+) -> Parsed {
     parsed.sources.truncate(mark.files);
     parsed.ast.items.truncate(mark.items);
     parsed.ast.exprs.truncate(mark.exprs);
     parsed.ast.unsupported_names.truncate(mark.unsupported);
     parsed.diagnostics.truncate(mark.diagnostics);
+    parsed.interner.rewind_spellings(mark.spelling);
     let _ = parse_one(&mut parsed, name, text, opts);
-    let p = prelude(&mut parsed, opts);
-    (parsed, p)
+    parsed
+}
+
+/// What an analysis by [`check`] keeps for the next one of the same
+/// parse's first part: the analyser's checkpoint, and the lints' findings
+/// in the first part (once a resumed analysis found them).
+pub struct Kept {
+    sema: stc_sema::Checkpoint,
+    lints: Option<Vec<stc_diagnostics::Diagnostic>>,
+}
+
+/// [`crate::check_parsed`] of a project parsed by [`parse_all`] or
+/// [`reparse_last`] with `mark`, made from `kept` (what the last analysis
+/// of the same first part kept) when it can be. Returns the analysis, what
+/// to keep for the next, and how the analysis was made.
+pub fn check(
+    parsed: Parsed,
+    mark: Mark,
+    opts: &Options,
+    lints: Option<&stc_lint::Levels>,
+    kept: Option<Kept>,
+) -> (
+    crate::Analysed,
+    crate::Pending,
+    Option<Kept>,
+    stc_sema::Made,
+) {
+    let sema_opts = stc_sema::Options { iec2: opts.iec2 };
+    let prelude = mark.prelude;
+    let split = mark.split();
+    let (mut sema_cp, mut prefix_lints) = match kept {
+        Some(k) => (Some(k.sema), k.lints),
+        None => (None, None),
+    };
+    let made = std::cell::Cell::new(stc_sema::Made::Whole);
+    let (analysed, pending) = crate::check_with(
+        parsed,
+        prelude,
+        lints,
+        |p| {
+            let (a, m) = match &sema_cp {
+                Some(cp) => stc_sema::resume(
+                    cp,
+                    &p.ast,
+                    &mut p.interner,
+                    &p.sources,
+                    Some(prelude),
+                    sema_opts,
+                ),
+                None => {
+                    let (a, cp, m) = stc_sema::analyze_split(
+                        &p.ast,
+                        &mut p.interner,
+                        &p.sources,
+                        Some(prelude),
+                        sema_opts,
+                        split,
+                    );
+                    sema_cp = cp;
+                    (a, m)
+                }
+            };
+            made.set(m);
+            a
+        },
+        |input, levels| {
+            let whole = || stc_lint::check(input, levels);
+            let end = input
+                .sources
+                .files()
+                .nth(split.files.saturating_sub(1))
+                .map_or(0, |(_, f)| f.span().hi);
+            if made.get() != stc_sema::Made::Resumed || end == 0 {
+                return whole();
+            }
+            // The first part's findings are the same for every resumed
+            // analysis (no name of the last file reaches it).
+            let first = prefix_lints
+                .get_or_insert_with(|| stc_lint::check_within(input, levels, 0..end))
+                .clone();
+            let mut found = first;
+            found.extend(stc_lint::check_within(input, levels, end..u32::MAX));
+            found
+        },
+    );
+    let kept = sema_cp.map(|sema| Kept {
+        sema,
+        lints: prefix_lints,
+    });
+    (analysed, pending, kept, made.get())
 }
 
 #[cfg(test)]
@@ -126,11 +252,10 @@ mod tests {
             .to_string();
         let opts = Options::default();
         crate::with_big_stack(move || {
-            let (p, m, _) = parse_all(vec![("a.st".into(), a.clone()), ("b.st".into(), b1)], &opts);
-            let (p, prelude) = reparse_last(p, m, "b.st".into(), b2.clone(), &opts);
-            let (full, _, full_prelude) =
-                parse_all(vec![("a.st".into(), a), ("b.st".into(), b2)], &opts);
-            assert_eq!(prelude, full_prelude);
+            let (p, m) = parse_all(vec![("a.st".into(), a.clone()), ("b.st".into(), b1)], &opts);
+            let p = reparse_last(p, m, "b.st".into(), b2.clone(), &opts);
+            let (full, full_mark) = parse_all(vec![("a.st".into(), a), ("b.st".into(), b2)], &opts);
+            assert_eq!(m.prelude(), full_mark.prelude());
             assert_eq!(dump(&p), dump(&full));
             assert_eq!(p.sources.len(), full.sources.len());
             assert!(!p.diagnostics.is_empty());

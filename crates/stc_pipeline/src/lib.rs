@@ -179,18 +179,40 @@ pub struct Pending {
 /// memory layout (E0901) when the analysis found no error. A language
 /// server publishes the diagnostics of this step first.
 pub fn check_parsed(
-    mut parsed: Parsed,
+    parsed: Parsed,
     prelude: Span,
     opts: &Options,
     lints: Option<&stc_lint::Levels>,
 ) -> (Analysed, Pending) {
-    let mut analysis = stc_sema::analyze(
-        &parsed.ast,
-        &mut parsed.interner,
-        &parsed.sources,
-        Some(prelude),
-        stc_sema::Options { iec2: opts.iec2 },
-    );
+    let sema_opts = stc_sema::Options { iec2: opts.iec2 };
+    check_with(
+        parsed,
+        prelude,
+        lints,
+        |p| {
+            stc_sema::analyze(
+                &p.ast,
+                &mut p.interner,
+                &p.sources,
+                Some(prelude),
+                sema_opts,
+            )
+        },
+        stc_lint::check,
+    )
+}
+
+/// [`check_parsed`] with the analysis made by `analyse` and the lints
+/// found by `lint` (given the analysis): the one sequence of both for the
+/// whole analysis and the incremental one ([`incremental`]).
+pub(crate) fn check_with(
+    mut parsed: Parsed,
+    prelude: Span,
+    lints: Option<&stc_lint::Levels>,
+    analyse: impl FnOnce(&mut Parsed) -> stc_sema::Analysis,
+    lint: impl FnOnce(&stc_lint::Input<'_>, &stc_lint::Levels) -> Vec<Diagnostic>,
+) -> (Analysed, Pending) {
+    let mut analysis = analyse(&mut parsed);
     let mut diagnostics = std::mem::take(&mut analysis.diagnostics);
     let clean = !parsed
         .diagnostics
@@ -204,7 +226,7 @@ pub fn check_parsed(
             .chain(diagnostics.iter())
             .cloned()
             .collect();
-        let found = stc_lint::check(
+        let found = lint(
             &stc_lint::Input {
                 ast: &parsed.ast,
                 analysis: &analysis,

@@ -62,7 +62,7 @@ pub(crate) struct VarSource<'a> {
 }
 
 /// Per-body state while statements are checked.
-#[derive(Default)]
+#[derive(Default, Clone)]
 pub(crate) struct Body {
     pub loop_depth: u32,
     /// FOR control variables of the loops around the current statement.
@@ -80,92 +80,150 @@ pub(crate) struct Body {
     pub current: Option<PouId>,
 }
 
-pub(crate) struct Sema<'a> {
+/// Declares [`Sema`] with its borrowed context and the owned fields given,
+/// and [`Owned`]: those same fields, what a [`crate::Checkpoint`] keeps of
+/// an analysis (every field written once, so none can be forgotten).
+macro_rules! sema_state {
+    ($($(#[$doc:meta])* $name:ident : $ty:ty,)*) => {
+        pub(crate) struct Sema<'a> {
+            pub ast: &'a Ast,
+            pub interner: &'a mut Interner,
+            pub sources: &'a SourceMap,
+            pub prelude: Option<Span>,
+            pub opts: Options,
+            pub type_decls: Vec<TypeDeclEntry<'a>>,
+            /// Declaration sources of each POU's variables (parallel to `vars`).
+            pub pou_var_src: Vec<Vec<Option<VarSource<'a>>>>,
+            pub global_src: Vec<VarSource<'a>>,
+            $($(#[$doc])* pub $name: $ty,)*
+        }
+
+        /// The state of [`Sema`] that borrows nothing from the syntax tree.
+        #[derive(Clone, Default)]
+        pub(crate) struct Owned {
+            $(pub $name: $ty,)*
+        }
+
+        impl<'a> Sema<'a> {
+            /// An analyser in the state `o`, over `ctx`'s tree.
+            pub(crate) fn from_parts(ctx: Ctx<'a>, o: Owned, refs: Refs<'a>) -> Sema<'a> {
+                Sema {
+                    ast: ctx.ast,
+                    interner: ctx.interner,
+                    sources: ctx.sources,
+                    prelude: ctx.prelude,
+                    opts: ctx.opts,
+                    type_decls: refs.type_decls,
+                    pou_var_src: refs.pou_var_src,
+                    global_src: refs.global_src,
+                    $($name: o.$name,)*
+                }
+            }
+
+            /// A copy of the owned state.
+            pub(crate) fn owned(&self) -> Owned {
+                Owned {
+                    $($name: self.$name.clone(),)*
+                }
+            }
+        }
+    };
+}
+
+/// What an analysis reads: the project's tree and its names.
+pub(crate) struct Ctx<'a> {
     pub ast: &'a Ast,
     pub interner: &'a mut Interner,
     pub sources: &'a SourceMap,
     pub prelude: Option<Span>,
     pub opts: Options,
+}
+
+/// The analyser's references into the tree.
+#[derive(Default)]
+pub(crate) struct Refs<'a> {
+    pub type_decls: Vec<TypeDeclEntry<'a>>,
+    pub pou_var_src: Vec<Vec<Option<VarSource<'a>>>>,
+    pub global_src: Vec<VarSource<'a>>,
+}
+
+sema_state! {
     /// Inside the constant of a declared type (an array bound, a string
     /// length, a subrange limit): a top-level VAR_GLOBAL CONSTANT may be
     /// named there without VAR_EXTERNAL (see `const_int`).
-    pub(crate) in_type_constant: bool,
-
-    pub types: TypeTable,
-    pub names: FxHashMap<Symbol, GlobalName>,
-    pub type_decls: Vec<TypeDeclEntry<'a>>,
-    pub pous: Vec<PouDef>,
-    /// Declaration sources of each POU's variables (parallel to `vars`).
-    pub pou_var_src: Vec<Vec<Option<VarSource<'a>>>>,
-    pub pou_var_state: Vec<Vec<State>>,
-    pub pou_state: Vec<State>,
-    pub fb_types: FxHashMap<PouId, TypeId>,
-
-    pub globals: Vec<GlobalDef>,
-    pub global_src: Vec<VarSource<'a>>,
-    pub global_state: Vec<State>,
+    in_type_constant: bool,
+    types: TypeTable,
+    names: FxHashMap<Symbol, GlobalName>,
+    pous: Vec<PouDef>,
+    pou_var_state: Vec<Vec<State>>,
+    pou_state: Vec<State>,
+    fb_types: FxHashMap<PouId, TypeId>,
+    globals: Vec<GlobalDef>,
+    global_state: Vec<State>,
     /// Top-level VAR_GLOBAL lists.
-    pub top_globals: Vec<GlobalId>,
-    pub configs: Vec<ConfigDef>,
-
-    pub expr_types: Vec<TypeId>,
-    pub coercions: FxHashMap<ExprId, TypeId>,
+    top_globals: Vec<GlobalId>,
+    configs: Vec<ConfigDef>,
+    expr_types: Vec<TypeId>,
+    coercions: FxHashMap<ExprId, TypeId>,
     /// The arithmetic expressions on bit strings (W0113) with the index of
     /// the warning that covers each: a tree of them is reported once, at
     /// its outermost operation (the inner warnings are dropped, `dropped`).
-    pub bit_arith: FxHashMap<ExprId, usize>,
-    pub dropped: FxHashSet<usize>,
+    bit_arith: FxHashMap<ExprId, usize>,
+    dropped: FxHashSet<usize>,
     /// The globals read without VAR_EXTERNAL (W0114), per POU.
-    pub implicit_globals: FxHashSet<(PouId, stc_syntax::Symbol)>,
-    pub resolutions: FxHashMap<ExprId, Res>,
-    pub consts: FxHashMap<ExprId, Value>,
-    pub calls: FxHashMap<ExprId, CallInfo>,
-    pub diags: Vec<Diagnostic>,
-
-    pub body: Body,
+    implicit_globals: FxHashSet<(PouId, stc_syntax::Symbol)>,
+    resolutions: FxHashMap<ExprId, Res>,
+    consts: FxHashMap<ExprId, Value>,
+    calls: FxHashMap<ExprId, CallInfo>,
+    diags: Vec<Diagnostic>,
+    body: Body,
     /// Variables referenced anywhere (bodies and declarations).
-    pub used: FxHashSet<(PouId, VarId)>,
+    used: FxHashSet<(PouId, VarId)>,
     /// Every enumeration value by name: its type, index, and the POU of a
     /// local anonymous enumeration.
-    pub enum_index: FxHashMap<Symbol, Vec<(TypeId, u32, Option<PouId>)>>,
+    enum_index: FxHashMap<Symbol, Vec<(TypeId, u32, Option<PouId>)>>,
     /// Calls between POUs, for the recursion check: (caller, callee, span).
-    pub call_edges: Vec<(PouId, PouId, Span)>,
+    call_edges: Vec<(PouId, PouId, Span)>,
     /// Names of all global variables (for W0109).
-    pub global_names: FxHashSet<Symbol>,
+    global_names: FxHashSet<Symbol>,
     /// The inner index expression of `a[i][j]`, which may index partially.
-    pub partial_index_ok: Option<ExprId>,
+    partial_index_ok: Option<ExprId>,
     /// Names declared by constructs reported as not supported (an
     /// INTERFACE...): uses of them are not reported again.
-    pub unsupported_names: FxHashSet<Symbol>,
+    unsupported_names: FxHashSet<Symbol>,
     /// The names of the variables some `REF(...)` of the project refers to
     /// (at the root of its argument): their values are never propagated,
     /// since a write through a reference may change them anywhere.
-    pub ref_taken: FxHashSet<Symbol>,
+    ref_taken: FxHashSet<Symbol>,
     /// `REF_TO T` met inside the declaration of the named type `T` (by
     /// index in `type_decls`): the reference type, completed when `T` is.
-    pub pending_refs: FxHashMap<(usize, bool), TypeId>,
+    pending_refs: FxHashMap<(usize, bool), TypeId>,
     /// Operands of IL `S`/`R` that name function block instances (the
     /// instruction sets that instance's input).
-    pub il_fb_inputs: FxHashSet<ExprId>,
+    il_fb_inputs: FxHashSet<ExprId>,
     /// The element types of the objects `ADR` points into, in the order
     /// first met (a pointer's object kind is its index, from 1).
-    pub ptr_kinds: Vec<TypeId>,
+    ptr_kinds: Vec<TypeId>,
     /// `ADR` calls of variables that live only during a call.
-    pub short_adrs: FxHashSet<ExprId>,
+    short_adrs: FxHashSet<ExprId>,
     /// `0` and `NULL` standing for the null pointer.
-    pub null_ptrs: FxHashSet<ExprId>,
+    null_ptrs: FxHashSet<ExprId>,
     /// VAR_STAT variables: (POU, name) to the global that holds them.
-    pub statics: FxHashMap<(PouId, Symbol), GlobalId>,
+    statics: FxHashMap<(PouId, Symbol), GlobalId>,
     /// VAR_INST variables: (function block, method name, name) to the
     /// block's variable that holds them.
-    pub inst_vars: FxHashMap<(PouId, Symbol, Symbol), VarId>,
+    inst_vars: FxHashMap<(PouId, Symbol, Symbol), VarId>,
     /// `p^` of a pointer to an array not indexed with every dimension.
-    pub whole_ptr_arrays: Vec<stc_diagnostics::Span>,
+    whole_ptr_arrays: Vec<stc_diagnostics::Span>,
     /// The type of the current result at the end of an IL body of a
     /// chart's transition, by the place it is stored in.
-    pub il_results: FxHashMap<ExprId, TypeId>,
+    il_results: FxHashMap<ExprId, TypeId>,
     /// The project's namespaces and each item's scope.
-    pub(crate) ns: crate::namespaces::Namespaces,
+    ns: crate::namespaces::Namespaces,
+    /// Every name declared at the global level, in the order met (types,
+    /// POUs, configurations, global variables, enumeration values): what
+    /// a [`crate::Checkpoint`] compares with the names its part uses.
+    declared: Vec<Symbol>,
 }
 
 impl<'a> Sema<'a> {
@@ -176,75 +234,73 @@ impl<'a> Sema<'a> {
         prelude: Option<Span>,
         opts: Options,
     ) -> Sema<'a> {
-        let ref_taken = ref_taken_names(ast, interner);
-        Sema {
+        let ctx = Ctx {
             ast,
             interner,
             sources,
             prelude,
             opts,
-            in_type_constant: false,
-            types: TypeTable::new(),
-            names: FxHashMap::default(),
-            type_decls: Vec::new(),
-            pous: Vec::new(),
-            pou_var_src: Vec::new(),
-            pou_var_state: Vec::new(),
-            pou_state: Vec::new(),
-            fb_types: FxHashMap::default(),
-            globals: Vec::new(),
-            global_src: Vec::new(),
-            global_state: Vec::new(),
-            top_globals: Vec::new(),
-            configs: Vec::new(),
-            expr_types: vec![TypeId::ERROR; ast.exprs.len()],
-            coercions: FxHashMap::default(),
-            bit_arith: Default::default(),
-            dropped: Default::default(),
-            implicit_globals: Default::default(),
-            resolutions: FxHashMap::default(),
-            consts: FxHashMap::default(),
-            calls: FxHashMap::default(),
-            diags: Vec::new(),
-            body: Body::default(),
-            used: FxHashSet::default(),
-            enum_index: FxHashMap::default(),
-            call_edges: Vec::new(),
-            partial_index_ok: None,
-            global_names: FxHashSet::default(),
-            unsupported_names: ast.unsupported_names.iter().map(|n| n.sym).collect(),
-            ref_taken,
-            pending_refs: FxHashMap::default(),
-            il_fb_inputs: FxHashSet::default(),
-            ptr_kinds: Vec::new(),
-            short_adrs: FxHashSet::default(),
-            null_ptrs: FxHashSet::default(),
-            whole_ptr_arrays: Vec::new(),
-            statics: FxHashMap::default(),
-            inst_vars: FxHashMap::default(),
-            il_results: FxHashMap::default(),
-            ns: Default::default(),
-        }
+        };
+        Sema::upto(ctx, ast.exprs.len(), ast.unsupported_names.len())
+    }
+
+    /// An analyser of the part of the tree before `exprs` expressions and
+    /// `unsupported` unsupported names.
+    pub(crate) fn upto(ctx: Ctx<'a>, exprs: usize, unsupported: usize) -> Sema<'a> {
+        let ast = ctx.ast;
+        let o = Owned {
+            expr_types: vec![TypeId::ERROR; exprs],
+            unsupported_names: ast.unsupported_names[..unsupported]
+                .iter()
+                .map(|n| n.sym)
+                .collect(),
+            ref_taken: ref_taken_names(ast, 0..exprs, ctx.interner),
+            ..Owned::default()
+        };
+        Sema::from_parts(ctx, o, Refs::default())
+    }
+
+    /// The items in the order they are analysed: the user's in order, then
+    /// the prelude's (so a declaration of the user's comes first wherever
+    /// the prelude sits in the tree).
+    pub(crate) fn analysis_order(&self, items: std::ops::Range<usize>) -> Vec<usize> {
+        let (mut user, mut std): (Vec<usize>, Vec<usize>) =
+            items.partition(|&i| !self.in_prelude(self.ast.items[i].span()));
+        user.append(&mut std);
+        user
     }
 
     pub fn run(mut self) -> Analysis {
-        self.collect();
-        self.link_classes();
-        for i in 0..self.type_decls.len() {
+        let order = self.analysis_order(0..self.ast.items.len());
+        self.analyse_items(&order);
+        self.finish()
+    }
+
+    /// Declares the items (indices into the tree) and checks them: names,
+    /// types, POU variables, globals, configurations, classes, bodies.
+    /// Called once for a whole project, or once per part of it (a
+    /// [`crate::Checkpoint`]), in order.
+    pub(crate) fn analyse_items(&mut self, items: &[usize]) {
+        let first_pou = self.pous.len();
+        let first_type = self.type_decls.len();
+        let first_global = self.globals.len();
+        self.collect(items);
+        self.link_classes(first_pou);
+        for i in first_type..self.type_decls.len() {
             self.resolve_type_decl(i);
         }
-        for p in 0..self.pous.len() {
+        for p in first_pou..self.pous.len() {
             self.resolve_pou(PouId(p as u32));
         }
-        for g in 0..self.globals.len() {
+        for g in first_global..self.globals.len() {
             self.resolve_global(GlobalId(g as u32));
         }
-        self.collect_configs();
-        self.check_classes();
+        self.collect_configs(items);
+        self.check_classes(first_pou);
         self.global_names = self.globals.iter().map(|g| g.var.name).collect();
         // A function block's methods before its own body, so that what
         // they use of the instance is known to its warnings.
-        for id in 0..self.pous.len() {
+        for id in first_pou..self.pous.len() {
             let id = PouId(id as u32);
             if self.pous[id.0 as usize].method_of.is_some() {
                 continue;
@@ -258,6 +314,11 @@ impl<'a> Sema<'a> {
                 self.check_body(id, p);
             }
         }
+    }
+
+    /// The checks of the whole project, after every item: externals,
+    /// recursion, pointers; then the result.
+    pub(crate) fn finish(mut self) -> Analysis {
         self.check_externals();
         self.check_recursion();
         if let Some(prelude) = self.prelude {
@@ -418,11 +479,16 @@ fn edit_distance(a: &str, b: &str) -> usize {
     prev[b.len()]
 }
 
-/// The names at the root of every `REF(...)` argument of a project.
-fn ref_taken_names(ast: &Ast, interner: &Interner) -> FxHashSet<Symbol> {
+/// The names at the root of every `REF(...)` argument among the
+/// expressions `exprs`.
+pub(crate) fn ref_taken_names(
+    ast: &Ast,
+    exprs: std::ops::Range<usize>,
+    interner: &Interner,
+) -> FxHashSet<Symbol> {
     use stc_syntax::ast::ExprKind;
     let mut out = FxHashSet::default();
-    for e in &ast.exprs {
+    for e in &ast.exprs[exprs] {
         let ExprKind::Call { callee, args } = &e.kind else {
             continue;
         };

@@ -28,10 +28,10 @@ impl<'a> Sema<'a> {
 
     /// After every name is registered: resolves EXTENDS and IMPLEMENTS,
     /// refuses cycles, gives the tag and the inherited variables.
-    pub(crate) fn link_classes(&mut self) {
+    pub(crate) fn link_classes(&mut self, first: usize) {
         let n = self.pous.len();
         let mut any = false;
-        for p in 0..n {
+        for p in first..n {
             let pid = PouId(p as u32);
             if self.pous[p].method_of.is_some() || self.pous[p].kind != PouKind::FunctionBlock {
                 continue;
@@ -155,8 +155,8 @@ impl<'a> Sema<'a> {
         if !any {
             return;
         }
-        self.break_cycles();
-        for p in 0..n {
+        self.break_cycles(first);
+        for p in first..n {
             if self.pous[p].class == Some(ClassKind::Interface) && self.pous[p].method_of.is_none()
             {
                 self.types.add_interface(PouId(p as u32));
@@ -174,7 +174,7 @@ impl<'a> Sema<'a> {
         // Who takes part: a block or class with a base, extended, with
         // interfaces, any class and any interface.
         let mut part = vec![false; n];
-        for p in 0..n {
+        for p in first..n {
             let def = &self.pous[p];
             if def.class.is_some() || def.base.is_some() || !def.interfaces.is_empty() {
                 part[p] = true;
@@ -208,7 +208,7 @@ impl<'a> Sema<'a> {
             self.prepend_vars(p, vec![tag], &[], State::Done);
             self.pous[p].tag = Some(VarId(0));
         }
-        let mut order: Vec<(usize, usize)> = (0..n)
+        let mut order: Vec<(usize, usize)> = (first..n)
             .filter(|&p| self.pous[p].base.is_some())
             .map(|p| (self.depth(PouId(p as u32)), p))
             .collect();
@@ -270,9 +270,9 @@ impl<'a> Sema<'a> {
 
     /// E1319 for a cycle of EXTENDS (or of interfaces extending each
     /// other), once per cycle; the link closing it is dropped.
-    fn break_cycles(&mut self) {
+    fn break_cycles(&mut self, first: usize) {
         let n = self.pous.len();
-        for p in 0..n {
+        for p in first..n {
             let pid = PouId(p as u32);
             // Bases: a chain.
             let mut at = self.pous[p].base;
@@ -418,16 +418,16 @@ impl<'a> Sema<'a> {
 
     /// After the variables' types are resolved: overriding, FINAL,
     /// ABSTRACT and interface methods.
-    pub(crate) fn check_classes(&mut self) {
+    pub(crate) fn check_classes(&mut self, first: usize) {
         let n = self.pous.len();
         // The reference types dispatch needs (lowering cannot add types).
-        for p in 0..n {
+        for p in first..n {
             if self.pous[p].tag.is_some() {
                 let t = self.pou_type(PouId(p as u32));
                 self.types.ref_to(t);
             }
         }
-        for p in 0..n {
+        for p in first..n {
             let pid = PouId(p as u32);
             if self.pous[p].method_of.is_some() || self.pous[p].kind != PouKind::FunctionBlock {
                 continue;

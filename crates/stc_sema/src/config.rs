@@ -14,10 +14,10 @@ use crate::{
 };
 
 impl<'a> Sema<'a> {
-    pub(crate) fn collect_configs(&mut self) {
+    pub(crate) fn collect_configs(&mut self, items: &[usize]) {
         let ast = self.ast;
-        for item in &ast.items {
-            if let Item::Configuration(c) = item {
+        for &i in items {
+            if let Item::Configuration(c) = &ast.items[i] {
                 self.configuration(c);
             }
         }

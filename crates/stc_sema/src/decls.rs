@@ -30,6 +30,7 @@ fn section_of(kind: VarKind) -> Section {
 impl<'a> Sema<'a> {
     /// Registers a global name, reporting a duplicate (E0105).
     fn register(&mut self, name: Ident, what: GlobalName) -> bool {
+        self.declared.push(name.sym);
         if let Some(prev) = self.names.get(&name.sym).copied() {
             let prev_span = self.global_name_span(prev);
             if self.in_prelude(name.span)
@@ -93,11 +94,11 @@ impl<'a> Sema<'a> {
         })
     }
 
-    pub(crate) fn collect(&mut self) {
+    pub(crate) fn collect(&mut self, items: &[usize]) {
         let ast = self.ast;
         let item_ns = self.build_namespaces();
-        for (i, item) in ast.items.iter().enumerate() {
-            match item {
+        for &i in items {
+            match &ast.items[i] {
                 Item::Types(decls, _) => {
                     for d in decls {
                         let idx = self.type_decls.len();
@@ -467,6 +468,7 @@ impl<'a> Sema<'a> {
                     owner,
                 });
                 self.global_src.push(VarSource { block, decl });
+                self.declared.push(sym);
                 self.global_state.push(State::Todo);
                 ids.push(id);
             }
@@ -739,6 +741,7 @@ impl<'a> Sema<'a> {
                 // A local value hiding a global one is W0102 at each use
                 // (`warn_hidden_enum_value`).
                 for (i, (sym, _)) in members.into_iter().enumerate() {
+                    self.declared.push(sym);
                     self.enum_index
                         .entry(sym)
                         .or_default()

@@ -16,6 +16,7 @@
 
 mod analyzer;
 mod calls;
+mod checkpoint;
 mod classes;
 mod config;
 mod decls;
@@ -42,6 +43,7 @@ use stc_syntax::literal::DirectAddress;
 use stc_syntax::{Interner, Symbol};
 use stc_values::{Intrinsic, Value};
 
+pub use checkpoint::{analyze_split, resume, Checkpoint, Made, Split, SUGGESTS_GLOBALS};
 pub use types::{Compat, InitValue, TypeId, TypeKind, TypeTable};
 
 /// Index of a POU in [`Analysis::pous`].

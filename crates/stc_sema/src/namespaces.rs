@@ -38,7 +38,7 @@ use stc_syntax::Symbol;
 use crate::analyzer::{GlobalName, Scope, Sema};
 
 /// The namespaces of a project and the scope of each of its items.
-#[derive(Default)]
+#[derive(Default, Clone)]
 pub(crate) struct Namespaces {
     /// Whether the project declares or uses any namespace: if not, a name is
     /// simply its entry in the global table.

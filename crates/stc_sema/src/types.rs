@@ -116,6 +116,7 @@ pub enum InitValue {
     Struct(Vec<(Symbol, InitValue)>),
 }
 
+#[derive(Clone)]
 pub struct TypeTable {
     types: Vec<TypeInfo>,
     strings: rustc_hash::FxHashMap<(bool, u32), TypeId>,

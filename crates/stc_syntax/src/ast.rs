@@ -823,6 +823,20 @@ pub enum Item {
     Using(UsingDecl),
 }
 
+impl Item {
+    /// Where the item is written (for a namespace, its opening line).
+    pub fn span(&self) -> Span {
+        match self {
+            Item::Types(_, span) | Item::EndNamespace(span) => *span,
+            Item::Pou(p) => p.span,
+            Item::Configuration(c) => c.span,
+            Item::GlobalVars(b) => b.span,
+            Item::Namespace(n) => n.span,
+            Item::Using(u) => u.span,
+        }
+    }
+}
+
 /// The opening of a namespace.
 #[derive(Clone, PartialEq, Debug)]
 pub struct NamespaceDecl {

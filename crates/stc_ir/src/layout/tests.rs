@@ -292,6 +292,7 @@ fn module(vars: &[(Spec, Kind)], locals: &[Spec], globals: &[Spec]) -> Module {
             retain: false,
             location: None,
             span: b.span(),
+            library: false,
         })
         .collect();
     b.pou(PouKind::Program, pvars);

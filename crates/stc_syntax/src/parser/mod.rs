@@ -1011,8 +1011,11 @@ pub fn parse_project_in(
     for (_, f) in sources.files() {
         // The standard library (`<stdlib>`) is written in the 3rd edition.
         let edition2 = iec2 && !f.name.starts_with('<');
+        // Its spellings give way to the user's (`Interner::library`).
+        interner.library = f.name.starts_with('<');
         let r = parse_file_in(&f.text, f.base, &mut ast, interner, edition2);
         diags.extend(r.diagnostics);
     }
+    interner.library = false;
     (ast, diags)
 }

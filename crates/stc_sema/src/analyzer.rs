@@ -184,6 +184,8 @@ sema_state! {
     enum_index: FxHashMap<Symbol, Vec<(TypeId, u32, Option<PouId>)>>,
     /// Calls between POUs, for the recursion check: (caller, callee, span).
     call_edges: Vec<(PouId, PouId, Span)>,
+    /// The blocks some block EXTENDS (known before any body is checked).
+    bases: FxHashSet<PouId>,
     /// Names of all global variables (for W0109).
     global_names: FxHashSet<Symbol>,
     /// The inner index expression of `a[i][j]`, which may index partially.
@@ -297,6 +299,7 @@ impl<'a> Sema<'a> {
         }
         self.collect_configs(items);
         self.check_classes(first_pou);
+        self.bases = self.pous.iter().filter_map(|d| d.base).collect();
         self.global_names = self.globals.iter().map(|g| g.var.name).collect();
         // A function block's methods before its own body, so that what
         // they use of the instance is known to its warnings.

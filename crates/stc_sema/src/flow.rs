@@ -73,7 +73,7 @@ impl<'a> Sema<'a> {
         // A block another block extends: its VAR variables may be used by
         // the derived blocks' bodies and methods (checked later or not at
         // all here), so none is called unused.
-        let extended = self.pous.iter().any(|d| d.base == Some(owner));
+        let extended = self.bases.contains(&owner);
         let vars: Vec<(stc_syntax::Symbol, Span, Section, bool, crate::TypeId)> = self.pous
             [p.0 as usize]
             .vars

@@ -386,6 +386,9 @@ pub(crate) fn compile(m: &Module) -> Result<Output, Error> {
     };
     let mut fctx = FunctionBuilderContext::new();
     let mut ctx = module.make_context();
+    // A debugging aid: `STC_JIT_DUMP=1` prints each function's CLIF as
+    // translated and the machine code Cranelift made of it, to stderr.
+    let dump = std::env::var_os("STC_JIT_DUMP").is_some();
     for p in m.pous.ids() {
         let Some(id) = g.ids[p.index()] else {
             continue;
@@ -395,9 +398,18 @@ pub(crate) fn compile(m: &Module) -> Result<Output, Error> {
             let b = FunctionBuilder::new(&mut ctx.func, &mut fctx);
             Fx::new(&mut g, &mut module, b, p).body()?;
         }
+        if dump {
+            ctx.set_disasm(true);
+            eprintln!("; POU {}\n{}", m.name(m.pous[p].name), ctx.func.display());
+        }
         module
             .define_function(id, &mut ctx)
             .map_err(|e| internal(format!("cranelift: {e:?}")))?;
+        if dump {
+            if let Some(vcode) = ctx.compiled_code().and_then(|c| c.vcode.as_ref()) {
+                eprintln!("; machine code of {}\n{vcode}", m.name(m.pous[p].name));
+            }
+        }
         module.clear_context(&mut ctx);
     }
     module

@@ -16,8 +16,8 @@
 use cranelift_codegen::ir::condcodes::{FloatCC, IntCC};
 use cranelift_codegen::ir::types::{F32, F64, I16, I32, I64, I8};
 use cranelift_codegen::ir::{
-    AbiParam, Block, FuncRef, InstBuilder, MemFlags, Signature, StackSlotData, StackSlotKind, Type,
-    Value as CVal,
+    AbiParam, Block, FuncRef, InstBuilder, InstructionData, MemFlags, Opcode, Signature,
+    StackSlotData, StackSlotKind, TrapCode, Type, Value as CVal, ValueDef,
 };
 use cranelift_codegen::isa::TargetFrontendConfig;
 use cranelift_codegen::settings::{self, Configurable};
@@ -386,9 +386,15 @@ pub(crate) fn compile(m: &Module) -> Result<Output, Error> {
     };
     let mut fctx = FunctionBuilderContext::new();
     let mut ctx = module.make_context();
-    // A debugging aid: `STC_JIT_DUMP=1` prints each function's CLIF as
-    // translated and the machine code Cranelift made of it, to stderr.
-    let dump = std::env::var_os("STC_JIT_DUMP").is_some();
+    // A debugging aid: `STC_JIT_DUMP=FILE` appends each function's CLIF as
+    // translated and the machine code Cranelift made of it to FILE.
+    let mut dump = std::env::var_os("STC_JIT_DUMP").and_then(|f| {
+        std::fs::OpenOptions::new()
+            .create(true)
+            .append(true)
+            .open(f)
+            .ok()
+    });
     for p in m.pous.ids() {
         let Some(id) = g.ids[p.index()] else {
             continue;
@@ -398,16 +404,24 @@ pub(crate) fn compile(m: &Module) -> Result<Output, Error> {
             let b = FunctionBuilder::new(&mut ctx.func, &mut fctx);
             Fx::new(&mut g, &mut module, b, p).body()?;
         }
-        if dump {
+        if let Some(f) = dump.as_mut() {
+            use std::io::Write;
             ctx.set_disasm(true);
-            eprintln!("; POU {}\n{}", m.name(m.pous[p].name), ctx.func.display());
+            let _ = writeln!(
+                f,
+                "; POU {}\n{}",
+                m.name(m.pous[p].name),
+                ctx.func.display()
+            );
         }
         module
             .define_function(id, &mut ctx)
             .map_err(|e| internal(format!("cranelift: {e:?}")))?;
-        if dump {
+        if let Some(f) = dump.as_mut() {
+            use std::io::Write;
+            let _ = writeln!(f, "; optimised\n{}", ctx.func.display());
             if let Some(vcode) = ctx.compiled_code().and_then(|c| c.vcode.as_ref()) {
-                eprintln!("; machine code of {}\n{vcode}", m.name(m.pous[p].name));
+                let _ = writeln!(f, "; machine code of {}\n{vcode}", m.name(m.pous[p].name));
             }
         }
         module.clear_context(&mut ctx);
@@ -558,6 +572,10 @@ enum V {
 struct PlaceAt {
     addr: CVal,
     part: Option<(u32, AddrSize, u32)>,
+    /// The native pointer of `addr`, when [`Fx::place_lazy`] built it in
+    /// the form Cranelift hoists and folds into an addressing mode:
+    /// `(base + root + constant offset) + index terms`.
+    ptr: Option<CVal>,
 }
 
 /// An index check: the index, its bounds, and the fault site it reports.
@@ -784,7 +802,7 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         }
         self.promote();
         self.block(&pou.body)?;
-        self.b.ins().jump(self.ret_block, &[]);
+        self.goto(self.ret_block);
         // Exits.
         self.b.switch_to_block(self.ret_block);
         self.flush();
@@ -881,9 +899,25 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
     }
 
     /// Starts a new block (after a jump: code that follows is unreachable).
+    /// It is sealed at once (nothing jumps to it), so the builder knows it
+    /// unreachable and [`Self::goto`] leaves it without an edge.
     fn fresh(&mut self) {
         let blk = self.b.create_block();
         self.b.switch_to_block(blk);
+        self.b.seal_block(blk);
+    }
+
+    /// Jumps to `to`; from an unreachable block (code after `EXIT`,
+    /// `CONTINUE`, `RETURN`) ends it with a trap instead: an edge from it
+    /// would give the target a predecessor where every variable is
+    /// undefined, and every variable a block parameter at the target,
+    /// which hides loop invariants from Cranelift's code motion.
+    fn goto(&mut self, to: Block) {
+        if self.b.is_unreachable() {
+            self.b.ins().trap(TrapCode::unwrap_user(1));
+        } else {
+            self.b.ins().jump(to, &[]);
+        }
     }
 
     /// A constant of an integer type (Cranelift wants the immediate of a
@@ -896,6 +930,21 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
             v
         };
         self.b.ins().iconst(t, v)
+    }
+
+    /// The value of `v` when it is an integer constant (`iconst`).
+    fn const_of(&self, v: CVal) -> Option<i64> {
+        let dfg = &self.b.func.dfg;
+        match dfg.value_def(dfg.resolve_aliases(v)) {
+            ValueDef::Result(inst, _) => match dfg.insts[inst] {
+                InstructionData::UnaryImm {
+                    opcode: Opcode::Iconst,
+                    imm,
+                } => Some(imm.bits()),
+                _ => None,
+            },
+            _ => None,
+        }
     }
 
     /// The native pointer of a model address.
@@ -918,23 +967,36 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
     }
 
     /// Jumps to the fault exit when `cond` (an i8 truth value) holds.
+    /// (Through a cold block of its own that sets the fault exit's
+    /// arguments: set before the branch, the constants would be
+    /// materialised on the hot path, in every iteration of a loop.)
     fn fault_if(&mut self, cond: CVal, kind: FaultKind) {
+        let fail = self.b.create_block();
+        let cont = self.b.create_block();
+        self.b.set_cold_block(fail);
+        self.b.ins().brif(cond, fail, &[], cont, &[]);
+        self.b.seal_block(fail);
+        self.b.seal_block(cont);
+        self.b.switch_to_block(fail);
         let k = self.iconst(I32, i64::from(kind.code()));
         let s = self.iconst(I32, i64::from(self.site));
-        let cont = self.b.create_block();
-        self.b
-            .ins()
-            .brif(cond, self.fault_block, &[k.into(), s.into()], cont, &[]);
+        self.b.ins().jump(self.fault_block, &[k.into(), s.into()]);
         self.b.switch_to_block(cont);
     }
 
     /// Jumps to the fault exit with a dynamic code when `code` is not 0.
     fn fault_code(&mut self, code: CVal) {
-        let s = self.iconst(I32, i64::from(self.site));
+        let fail = self.b.create_block();
         let cont = self.b.create_block();
+        self.b.set_cold_block(fail);
+        self.b.ins().brif(code, fail, &[], cont, &[]);
+        self.b.seal_block(fail);
+        self.b.seal_block(cont);
+        self.b.switch_to_block(fail);
+        let s = self.iconst(I32, i64::from(self.site));
         self.b
             .ins()
-            .brif(code, self.fault_block, &[code.into(), s.into()], cont, &[]);
+            .jump(self.fault_block, &[code.into(), s.into()]);
         self.b.switch_to_block(cont);
     }
 
@@ -1092,12 +1154,17 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                     self.b.create_block(),
                 );
                 self.b.ins().brif(c, t, &[], e, &[]);
+                // Each block is sealed as soon as its predecessors are all
+                // known (see the loop below).
+                self.b.seal_block(t);
+                self.b.seal_block(e);
                 self.b.switch_to_block(t);
                 self.block(then_body)?;
-                self.b.ins().jump(end, &[]);
+                self.goto(end);
                 self.b.switch_to_block(e);
                 self.block(else_body)?;
-                self.b.ins().jump(end, &[]);
+                self.goto(end);
+                self.b.seal_block(end);
                 self.b.switch_to_block(end);
             }
             StmtKind::Switch {
@@ -1111,17 +1178,28 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                     self.b.create_block(),
                     self.b.create_block(),
                 );
-                self.b.ins().jump(head, &[]);
+                self.goto(head);
                 self.b.switch_to_block(head);
                 self.loops.push((lat, exit));
                 self.block(body)?;
-                self.b.ins().jump(lat, &[]);
+                self.goto(lat);
+                self.b.seal_block(lat);
                 self.b.switch_to_block(lat);
                 self.block(latch)?;
                 self.loops.pop();
                 self.site = self.site_of((s.line, s.col));
                 self.step();
-                self.b.ins().jump(head, &[]);
+                self.goto(head);
+                // The loop's blocks are sealed as soon as their
+                // predecessors are all known, the header after its back
+                // edge: inner loops first, so that the SSA builder's
+                // removal of redundant block parameters sees a variable
+                // the loop does not assign as the value it enters with, a
+                // loop invariant for Cranelift's code motion (sealed all at
+                // the end, an outer header keeps a parameter whose inputs
+                // are its own value and the value entering it).
+                self.b.seal_block(head);
+                self.b.seal_block(exit);
                 self.b.switch_to_block(exit);
             }
             StmtKind::Break => {
@@ -1129,7 +1207,7 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                     .loops
                     .last()
                     .ok_or_else(|| internal("BREAK outside a loop"))?;
-                self.b.ins().jump(exit, &[]);
+                self.goto(exit);
                 self.fresh();
             }
             StmtKind::Continue => {
@@ -1137,16 +1215,20 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                     .loops
                     .last()
                     .ok_or_else(|| internal("CONTINUE outside a loop"))?;
-                self.b.ins().jump(lat, &[]);
+                self.goto(lat);
                 self.fresh();
             }
             StmtKind::Return => {
-                self.b.ins().jump(self.ret_block, &[]);
+                self.goto(self.ret_block);
                 self.fresh();
             }
             StmtKind::Fault(k) => {
-                let t = self.iconst(I8, 1);
-                self.fault_if(t, *k);
+                if !self.b.is_unreachable() {
+                    let k = self.iconst(I32, i64::from(k.code()));
+                    let s = self.iconst(I32, i64::from(self.site));
+                    self.b.ins().jump(self.fault_block, &[k.into(), s.into()]);
+                    self.fresh();
+                }
             }
         }
         self.site = saved;
@@ -1198,16 +1280,19 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                     let c = self.b.ins().band(a, b);
                     self.b.ins().brif(c, bodies[ai], &[], next, &[]);
                 }
+                self.b.seal_block(next);
                 self.b.switch_to_block(next);
             }
         }
         self.block(default)?;
-        self.b.ins().jump(end, &[]);
+        self.goto(end);
         for (ai, arm) in arms.iter().enumerate() {
+            self.b.seal_block(bodies[ai]);
             self.b.switch_to_block(bodies[ai]);
             self.block(&arm.body)?;
-            self.b.ins().jump(end, &[]);
+            self.goto(end);
         }
+        self.b.seal_block(end);
         self.b.switch_to_block(end);
         Ok(())
     }
@@ -1275,6 +1360,8 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         let cont = self.b.create_block();
         self.b.set_cold_block(fail);
         self.b.ins().brif(cond, fail, &[], cont, &[]);
+        self.b.seal_block(fail);
+        self.b.seal_block(cont);
         self.b.switch_to_block(fail);
         for (k, v) in values.into_iter().enumerate() {
             self.b
@@ -1341,6 +1428,31 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                 self.b.ins().uextend(I64, v)
             }
         };
+        // The native pointer, built beside the model address as the
+        // native address of the root (a function parameter plus the
+        // memory base: invariant, hoisted out of loops), a constant offset
+        // (fields, constant indices and every `-lo * stride` folded
+        // together) and the index terms (`i * stride`): a form the x86
+        // back end makes one addressing mode of.
+        let (mut n_root, mut n_k) = match &p.root {
+            Root::Var(v) if fixed => {
+                let lay = &self.g.l.pous[self.p];
+                let (off, in_frame) = (lay.offsets[*v], lay.in_frame[*v]);
+                let r = if in_frame { self.fp } else { self.this };
+                (self.b.ins().iadd(self.base, r), i64::from(off))
+            }
+            Root::This => (self.b.ins().iadd(self.base, self.this), 0),
+            Root::Global(g) => match self.g.d.global_offset(*g) {
+                Some(a) => (self.base, i64::from(a)),
+                None => (self.native(addr), 0),
+            },
+            Root::Direct(a) => match self.g.d.io_offset(a) {
+                Some(o) => (self.base, i64::from(o)),
+                None => (self.native(addr), 0),
+            },
+            _ => (self.native(addr), 0),
+        };
+        let mut n_terms: Vec<CVal> = Vec::new();
         let mut ty = match &p.root {
             Root::Var(v) => m.pous[self.p].var(*v).ty,
             Root::Global(g) => m.globals[*g].ty,
@@ -1354,6 +1466,7 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                 Proj::Field(i) => {
                     let off = self.g.l.field_offset(ty, *i);
                     addr = self.b.ins().iadd_imm(addr, i64::from(off));
+                    n_k = n_k.wrapping_add(i64::from(off));
                     ty = match m.types.kind(ty) {
                         TypeKind::Struct { fields } => fields
                             .get(*i as usize)
@@ -1365,6 +1478,7 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                 Proj::FbVar(fb, v) => {
                     let off = self.g.l.var_offset(*fb, *v);
                     addr = self.b.ins().iadd_imm(addr, i64::from(off));
+                    n_k = n_k.wrapping_add(i64::from(off));
                     let var = m.pous[*fb].var(*v);
                     ty = var.ty;
                     if var.storage == Storage::Ref {
@@ -1378,6 +1492,9 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                         }
                         addr = self.b.ins().uextend(I64, a);
                         fixed = false;
+                        n_root = self.native(addr);
+                        n_k = 0;
+                        n_terms.clear();
                     }
                 }
                 Proj::Index(idx) => {
@@ -1402,6 +1519,7 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                             }
                         }
                         addr = self.b.ins().iadd_imm(addr, off.max(0) as i64);
+                        n_k = n_k.wrapping_add(off.max(0) as i64);
                     } else {
                         for (k, (e, lo, hi)) in idx.iter().enumerate() {
                             // An index range analysis proves needs no check.
@@ -1436,6 +1554,17 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                             let mult = mults[k].clamp(0, i64::MAX as i128) as i64;
                             let off = self.b.ins().imul_imm(rel, mult);
                             addr = self.b.ins().iadd(addr, off);
+                            // (i - lo) * mult = i * mult - lo * mult, in
+                            // wrapping 64-bit arithmetic as the address.
+                            n_k = n_k.wrapping_sub(lo.wrapping_mul(mult));
+                            let term = if mult == 1 {
+                                i
+                            } else if mult > 0 && (mult as u64).is_power_of_two() {
+                                self.b.ins().ishl_imm(i, i64::from(mult.trailing_zeros()))
+                            } else {
+                                self.b.ins().imul_imm(i, mult)
+                            };
+                            n_terms.push(term);
                         }
                     }
                     ty = if idx.len() < dims.len() { p.ty } else { elem };
@@ -1446,7 +1575,18 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                 }
             }
         }
-        Ok((PlaceAt { addr, part }, pending))
+        let mut ptr = self.b.ins().iadd_imm(n_root, n_k);
+        for t in n_terms {
+            ptr = self.b.ins().iadd(ptr, t);
+        }
+        Ok((
+            PlaceAt {
+                addr,
+                part,
+                ptr: Some(ptr),
+            },
+            pending,
+        ))
     }
 
     /// An integer index as a signed 64-bit value.
@@ -1467,7 +1607,10 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
     }
 
     fn load_place(&mut self, pl: &PlaceAt, ty: TypeId) -> Result<V, Error> {
-        let ptr = self.native(pl.addr);
+        let ptr = match pl.ptr {
+            Some(p) => p,
+            None => self.native(pl.addr),
+        };
         if let Some((width, size, index)) = pl.part {
             let w = self
                 .b
@@ -1509,7 +1652,10 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
 
     /// Stores a value of type `vt` into a place of type `pt`.
     fn store(&mut self, pl: &PlaceAt, v: V, vt: TypeId, pt: TypeId) -> Result<(), Error> {
-        let ptr = self.native(pl.addr);
+        let ptr = match pl.ptr {
+            Some(p) => p,
+            None => self.native(pl.addr),
+        };
         if let Some((width, size, index)) = pl.part {
             let V::S(x) = v else {
                 return Err(internal("a bit part of a non-scalar"));
@@ -1907,8 +2053,12 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
             BinOp::Sub => self.b.ins().isub(a, b),
             BinOp::Mul => self.b.ins().imul(a, b),
             BinOp::Div | BinOp::Mod if !fl => {
-                let z = self.b.ins().icmp_imm(IntCC::Equal, b, 0);
-                self.fault_if(z, FaultKind::DivisionByZero);
+                // A constant divisor other than 0 needs no test (Cranelift
+                // folds the comparison, not the branch on it).
+                if self.const_of(b).is_none_or(|d| d == 0) {
+                    let z = self.b.ins().icmp_imm(IntCC::Equal, b, 0);
+                    self.fault_if(z, FaultKind::DivisionByZero);
+                }
                 let div = op == BinOp::Div;
                 if signed {
                     // wrapping_div/rem: MIN / -1 is MIN, MIN % -1 is 0 (a
@@ -1980,6 +2130,7 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         let st = self.b.inst_results(call)[0];
         let cont = self.b.create_block();
         self.b.ins().brif(st, self.prop_block, &[], cont, &[]);
+        self.b.seal_block(cont);
         self.b.switch_to_block(cont);
         self.reload();
         Ok(())
@@ -2023,7 +2174,11 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         }
         for (var, v, vt) in given {
             let addr = self.b.ins().iadd_imm(cf, i64::from(lay.offsets[var]));
-            let pl = PlaceAt { addr, part: None };
+            let pl = PlaceAt {
+                addr,
+                part: None,
+                ptr: None,
+            };
             self.store(&pl, v, vt, callee.vars[var].ty)?;
         }
         for (var, a) in refs {
@@ -2039,7 +2194,14 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         let result = match callee.result {
             Some(r) => {
                 let addr = self.b.ins().iadd_imm(cf, i64::from(lay.offsets[r]));
-                let v = self.load_place(&PlaceAt { addr, part: None }, callee.vars[r].ty)?;
+                let v = self.load_place(
+                    &PlaceAt {
+                        addr,
+                        part: None,
+                        ptr: None,
+                    },
+                    callee.vars[r].ty,
+                )?;
                 self.keep(v, ty, true)
             }
             None => V::S(self.iconst(I8, 0)),
@@ -2059,6 +2221,7 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
             &PlaceAt {
                 addr: src,
                 part: None,
+                ptr: None,
             },
             src_ty,
         )?;
@@ -2101,7 +2264,16 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         for (v, e) in inputs {
             let val = self.expr(e)?;
             let addr = self.b.ins().iadd_imm(inst, i64::from(lay.offsets[*v]));
-            self.store(&PlaceAt { addr, part: None }, val, e.ty, fbp.var(*v).ty)?;
+            self.store(
+                &PlaceAt {
+                    addr,
+                    part: None,
+                    ptr: None,
+                },
+                val,
+                e.ty,
+                fbp.var(*v).ty,
+            )?;
         }
         for (v, p) in inouts {
             let a = self.place(p)?.addr;

@@ -674,6 +674,10 @@ struct Fx<'g, 'a, 'm, 'f> {
     steps: Option<Variable>,
     /// The indices range analysis proves inside their bounds (unchecked).
     proven: stc_ir::ranges::Proven,
+    /// The loops emitted twice behind a guard (`stc_ir::ranges::Versions`).
+    versions: stc_ir::ranges::Versions,
+    /// Inside the check-free copy of a versioned loop: its version.
+    fast: Option<stc_ir::ranges::Version>,
 }
 
 impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
@@ -694,6 +698,7 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         let ret_block = b.create_block();
         let m: &'m Module = g.m;
         let proven = stc_ir::ranges::Proven::of(m, &m.pous[p]);
+        let versions = stc_ir::ranges::Versions::of(m, &m.pous[p], &proven);
         Fx {
             g,
             module,
@@ -713,6 +718,8 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
             written: Vec::new(),
             steps: None,
             proven,
+            versions,
+            fast: None,
         }
     }
 
@@ -1172,36 +1179,33 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                 arms,
                 default,
             } => self.switch(selector, arms, default)?,
-            StmtKind::Loop { body, latch } => {
-                let (head, lat, exit) = (
-                    self.b.create_block(),
-                    self.b.create_block(),
-                    self.b.create_block(),
-                );
-                self.goto(head);
-                self.b.switch_to_block(head);
-                self.loops.push((lat, exit));
-                self.block(body)?;
-                self.goto(lat);
-                self.b.seal_block(lat);
-                self.b.switch_to_block(lat);
-                self.block(latch)?;
-                self.loops.pop();
-                self.site = self.site_of((s.line, s.col));
-                self.step();
-                self.goto(head);
-                // The loop's blocks are sealed as soon as their
-                // predecessors are all known, the header after its back
-                // edge: inner loops first, so that the SSA builder's
-                // removal of redundant block parameters sees a variable
-                // the loop does not assign as the value it enters with, a
-                // loop invariant for Cranelift's code motion (sealed all at
-                // the end, an outer header keeps a parameter whose inputs
-                // are its own value and the value entering it).
-                self.b.seal_block(head);
-                self.b.seal_block(exit);
-                self.b.switch_to_block(exit);
-            }
+            StmtKind::Loop { body, latch } => match self.versions.get(s).cloned() {
+                // Loop versioning: the check-free copy where the guard
+                // holds, the checked loop where it does not.
+                Some(v) if self.fast.is_none() => {
+                    let c = self.expr_s(&v.guard)?;
+                    let (fast, slow, join) = (
+                        self.b.create_block(),
+                        self.b.create_block(),
+                        self.b.create_block(),
+                    );
+                    self.b.ins().brif(c, fast, &[], slow, &[]);
+                    self.b.seal_block(fast);
+                    self.b.seal_block(slow);
+                    self.b.switch_to_block(fast);
+                    self.fast = Some(v);
+                    let r = self.emit_loop(s, body, latch);
+                    self.fast = None;
+                    r?;
+                    self.goto(join);
+                    self.b.switch_to_block(slow);
+                    self.emit_loop(s, body, latch)?;
+                    self.goto(join);
+                    self.b.seal_block(join);
+                    self.b.switch_to_block(join);
+                }
+                _ => self.emit_loop(s, body, latch)?,
+            },
             StmtKind::Break => {
                 let (_, exit) = *self
                     .loops
@@ -1232,6 +1236,39 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
             }
         }
         self.site = saved;
+        Ok(())
+    }
+
+    /// A loop: its header, body, latch (with the watchdog step) and exit.
+    fn emit_loop(&mut self, s: &Stmt, body: &[Stmt], latch: &[Stmt]) -> Result<(), Error> {
+        let (head, lat, exit) = (
+            self.b.create_block(),
+            self.b.create_block(),
+            self.b.create_block(),
+        );
+        self.goto(head);
+        self.b.switch_to_block(head);
+        self.loops.push((lat, exit));
+        self.block(body)?;
+        self.goto(lat);
+        self.b.seal_block(lat);
+        self.b.switch_to_block(lat);
+        self.block(latch)?;
+        self.loops.pop();
+        self.site = self.site_of((s.line, s.col));
+        self.step();
+        self.goto(head);
+        // The loop's blocks are sealed as soon as their
+        // predecessors are all known, the header after its back
+        // edge: inner loops first, so that the SSA builder's
+        // removal of redundant block parameters sees a variable
+        // the loop does not assign as the value it enters with, a
+        // loop invariant for Cranelift's code motion (sealed all at
+        // the end, an outer header keeps a parameter whose inputs
+        // are its own value and the value entering it).
+        self.b.seal_block(head);
+        self.b.seal_block(exit);
+        self.b.switch_to_block(exit);
         Ok(())
     }
 
@@ -1523,7 +1560,8 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                     } else {
                         for (k, (e, lo, hi)) in idx.iter().enumerate() {
                             // An index range analysis proves needs no check.
-                            let proven = self.proven.contains(e);
+                            let proven = self.proven.contains(e)
+                                || self.fast.as_ref().is_some_and(|v| v.covers(e));
                             // A checked index reports its own position.
                             let (at, e) = e.located();
                             let site = match at {

@@ -1,18 +1,20 @@
-//! Property test: the constant folder and the virtual machine agree.
+//! Property test: the constant folder, the virtual machine and the JIT agree.
 //!
 //! A random typed expression is compiled twice: once with literal leaves,
 //! which the analyser folds to a constant with `stc_values`, and once with
 //! every leaf read from a variable initialised to that literal, which the VM
-//! computes with its own instructions. Both programs store the result in
-//! `r`; after one cycle the two values must be identical (bit for bit for
-//! reals), and an expression the folder rejects (division by zero, a failed
-//! conversion) must fault on the VM.
+//! computes with its own instructions and the JIT (`stc_engine_jit`) with
+//! native code. Both programs store the result in `r`; after one cycle the
+//! values must be identical (bit for bit for reals) on both engines, and an
+//! expression the folder rejects (division by zero, a failed conversion)
+//! must fault on the VM and on the JIT, with the same fault kind.
 
 use std::sync::Arc;
 
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
 use stc_pipeline::Options;
+use stc_runtime::Engine;
 use stc_values::Value;
 
 /// The types expressions are built over.
@@ -252,7 +254,7 @@ fn build(b: &mut Builder, r: &Recipe, ty: &str) -> Gen {
 }
 
 /// What one cycle of a program produced.
-#[derive(Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 enum Outcome {
     /// The analyser rejected the program (the error codes).
     Rejected(Vec<String>),
@@ -260,7 +262,9 @@ enum Outcome {
     Value(String),
 }
 
-fn run(src: String) -> Outcome {
+/// Runs one cycle of `src` on the VM and on the JIT: both outcomes (the
+/// same `Rejected` twice when the analyser rejects it).
+fn run(src: String) -> (Outcome, Outcome) {
     let mut sm = stc_diagnostics::SourceMap::new();
     sm.add("p.st", src);
     let a = stc_pipeline::analyse(sm, Vec::new(), &Options::default());
@@ -271,23 +275,33 @@ fn run(src: String) -> Outcome {
         .map(|d| format!("{:?}: {}", d.code, d.message))
         .collect();
     if !errors.is_empty() {
-        return Outcome::Rejected(errors);
+        return (Outcome::Rejected(errors.clone()), Outcome::Rejected(errors));
     }
     let module = stc_pipeline::lower(a);
     let image = Arc::new(stc_vm::compile(&module).expect("the program compiles"));
-    let inst = image.model.programs[0].clone();
-    let mut m = stc_vm::Machine::new(image.clone());
-    if let Err(f) = m.run_program(&inst, 0, 1_000_000) {
+    let vm = cycle(stc_vm::Machine::new(image.clone()));
+    match stc_engine_jit::JitEngine::build(&module) {
+        Ok(jit) => (vm, cycle(jit)),
+        // A host Cranelift has no back end for: the VM alone.
+        Err(stc_engine_jit::Error::Unsupported(_)) => (vm.clone(), vm),
+        Err(e) => panic!("the JIT did not compile the program: {e}"),
+    }
+}
+
+/// One cycle of the first program on an engine, and the value of `r`.
+fn cycle(mut e: impl Engine) -> Outcome {
+    let model = e.model().clone();
+    let inst = model.programs[0].clone();
+    if let Err(f) = e.run_program(&inst, 0, 1_000_000) {
         return Outcome::Fault(format!("{:?}", f.kind));
     }
-    let pou = &image.model.pous[inst.pou as usize];
+    let pou = &model.pous[inst.pou as usize];
     let r = pou
         .vars
         .iter()
         .find(|v| v.name.eq_ignore_ascii_case("r"))
         .expect("r");
-    let v = m
-        .read_value(inst.offset + r.offset, r.ty)
+    let v = stc_runtime::engine::read_value(&e, &model, inst.offset + r.offset, r.ty)
         .expect("readable");
     Outcome::Value(match v {
         Value::Real(x) => format!("{:?} bits {:016x}", x, x.to_bits()),
@@ -303,7 +317,7 @@ fn program(ty: &str, expr: &str, decls: &[String]) -> String {
 }
 
 #[test]
-fn the_constant_folder_and_the_vm_agree() {
+fn the_constant_folder_the_vm_and_the_jit_agree() {
     let cases: u32 = std::env::var("STC_FOLD_CASES")
         .ok()
         .and_then(|s| s.parse().ok())
@@ -321,8 +335,16 @@ fn the_constant_folder_and_the_vm_agree() {
         let ty = types[t as usize % types.len()];
         let mut b = Builder { decls: Vec::new() };
         let g = build(&mut b, &r, ty);
-        let folded = run(program(ty, &g.lit, &[]));
-        let computed = run(program(ty, &g.var, &b.decls));
+        // The folded constant is the same program on both engines: its
+        // VM outcome stands for it.
+        let (folded, _) = run(program(ty, &g.lit, &[]));
+        let (computed, jit) = run(program(ty, &g.var, &b.decls));
+        prop_assert_eq!(
+            &computed,
+            &jit,
+            "the VM and the JIT differ (VM left, JIT right): r := {}",
+            g.var
+        );
         match (&folded, &computed) {
             // An expression the language rejects (the generator does not
             // know every rule) is rejected in both forms.

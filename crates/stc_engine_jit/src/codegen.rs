@@ -16,8 +16,8 @@
 use cranelift_codegen::ir::condcodes::{FloatCC, IntCC};
 use cranelift_codegen::ir::types::{F32, F64, I16, I32, I64, I8};
 use cranelift_codegen::ir::{
-    AbiParam, Block, FuncRef, InstBuilder, MemFlags, Signature, StackSlotData, StackSlotKind, Type,
-    Value as CVal,
+    AbiParam, Block, FuncRef, InstBuilder, InstructionData, MemFlags, Opcode, Signature,
+    StackSlotData, StackSlotKind, TrapCode, Type, Value as CVal, ValueDef,
 };
 use cranelift_codegen::isa::TargetFrontendConfig;
 use cranelift_codegen::settings::{self, Configurable};
@@ -386,6 +386,15 @@ pub(crate) fn compile(m: &Module) -> Result<Output, Error> {
     };
     let mut fctx = FunctionBuilderContext::new();
     let mut ctx = module.make_context();
+    // A debugging aid: `STC_JIT_DUMP=FILE` appends each function's CLIF as
+    // translated and the machine code Cranelift made of it to FILE.
+    let mut dump = std::env::var_os("STC_JIT_DUMP").and_then(|f| {
+        std::fs::OpenOptions::new()
+            .create(true)
+            .append(true)
+            .open(f)
+            .ok()
+    });
     for p in m.pous.ids() {
         let Some(id) = g.ids[p.index()] else {
             continue;
@@ -395,9 +404,26 @@ pub(crate) fn compile(m: &Module) -> Result<Output, Error> {
             let b = FunctionBuilder::new(&mut ctx.func, &mut fctx);
             Fx::new(&mut g, &mut module, b, p).body()?;
         }
+        if let Some(f) = dump.as_mut() {
+            use std::io::Write;
+            ctx.set_disasm(true);
+            let _ = writeln!(
+                f,
+                "; POU {}\n{}",
+                m.name(m.pous[p].name),
+                ctx.func.display()
+            );
+        }
         module
             .define_function(id, &mut ctx)
             .map_err(|e| internal(format!("cranelift: {e:?}")))?;
+        if let Some(f) = dump.as_mut() {
+            use std::io::Write;
+            let _ = writeln!(f, "; optimised\n{}", ctx.func.display());
+            if let Some(vcode) = ctx.compiled_code().and_then(|c| c.vcode.as_ref()) {
+                let _ = writeln!(f, "; machine code of {}\n{vcode}", m.name(m.pous[p].name));
+            }
+        }
         module.clear_context(&mut ctx);
     }
     module
@@ -546,6 +572,10 @@ enum V {
 struct PlaceAt {
     addr: CVal,
     part: Option<(u32, AddrSize, u32)>,
+    /// The native pointer of `addr`, when [`Fx::place_lazy`] built it in
+    /// the form Cranelift hoists and folds into an addressing mode:
+    /// `(base + root + constant offset) + index terms`.
+    ptr: Option<CVal>,
 }
 
 /// An index check: the index, its bounds, and the fault site it reports.
@@ -644,6 +674,10 @@ struct Fx<'g, 'a, 'm, 'f> {
     steps: Option<Variable>,
     /// The indices range analysis proves inside their bounds (unchecked).
     proven: stc_ir::ranges::Proven,
+    /// The loops emitted twice behind a guard (`stc_ir::ranges::Versions`).
+    versions: stc_ir::ranges::Versions,
+    /// Inside the check-free copy of a versioned loop: its version.
+    fast: Option<stc_ir::ranges::Version>,
 }
 
 impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
@@ -664,6 +698,7 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         let ret_block = b.create_block();
         let m: &'m Module = g.m;
         let proven = stc_ir::ranges::Proven::of(m, &m.pous[p]);
+        let versions = stc_ir::ranges::Versions::of(m, &m.pous[p], &proven);
         Fx {
             g,
             module,
@@ -683,6 +718,8 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
             written: Vec::new(),
             steps: None,
             proven,
+            versions,
+            fast: None,
         }
     }
 
@@ -772,7 +809,7 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         }
         self.promote();
         self.block(&pou.body)?;
-        self.b.ins().jump(self.ret_block, &[]);
+        self.goto(self.ret_block);
         // Exits.
         self.b.switch_to_block(self.ret_block);
         self.flush();
@@ -869,9 +906,25 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
     }
 
     /// Starts a new block (after a jump: code that follows is unreachable).
+    /// It is sealed at once (nothing jumps to it), so the builder knows it
+    /// unreachable and [`Self::goto`] leaves it without an edge.
     fn fresh(&mut self) {
         let blk = self.b.create_block();
         self.b.switch_to_block(blk);
+        self.b.seal_block(blk);
+    }
+
+    /// Jumps to `to`; from an unreachable block (code after `EXIT`,
+    /// `CONTINUE`, `RETURN`) ends it with a trap instead: an edge from it
+    /// would give the target a predecessor where every variable is
+    /// undefined, and every variable a block parameter at the target,
+    /// which hides loop invariants from Cranelift's code motion.
+    fn goto(&mut self, to: Block) {
+        if self.b.is_unreachable() {
+            self.b.ins().trap(TrapCode::unwrap_user(1));
+        } else {
+            self.b.ins().jump(to, &[]);
+        }
     }
 
     /// A constant of an integer type (Cranelift wants the immediate of a
@@ -884,6 +937,21 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
             v
         };
         self.b.ins().iconst(t, v)
+    }
+
+    /// The value of `v` when it is an integer constant (`iconst`).
+    fn const_of(&self, v: CVal) -> Option<i64> {
+        let dfg = &self.b.func.dfg;
+        match dfg.value_def(dfg.resolve_aliases(v)) {
+            ValueDef::Result(inst, _) => match dfg.insts[inst] {
+                InstructionData::UnaryImm {
+                    opcode: Opcode::Iconst,
+                    imm,
+                } => Some(imm.bits()),
+                _ => None,
+            },
+            _ => None,
+        }
     }
 
     /// The native pointer of a model address.
@@ -906,23 +974,36 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
     }
 
     /// Jumps to the fault exit when `cond` (an i8 truth value) holds.
+    /// (Through a cold block of its own that sets the fault exit's
+    /// arguments: set before the branch, the constants would be
+    /// materialised on the hot path, in every iteration of a loop.)
     fn fault_if(&mut self, cond: CVal, kind: FaultKind) {
+        let fail = self.b.create_block();
+        let cont = self.b.create_block();
+        self.b.set_cold_block(fail);
+        self.b.ins().brif(cond, fail, &[], cont, &[]);
+        self.b.seal_block(fail);
+        self.b.seal_block(cont);
+        self.b.switch_to_block(fail);
         let k = self.iconst(I32, i64::from(kind.code()));
         let s = self.iconst(I32, i64::from(self.site));
-        let cont = self.b.create_block();
-        self.b
-            .ins()
-            .brif(cond, self.fault_block, &[k.into(), s.into()], cont, &[]);
+        self.b.ins().jump(self.fault_block, &[k.into(), s.into()]);
         self.b.switch_to_block(cont);
     }
 
     /// Jumps to the fault exit with a dynamic code when `code` is not 0.
     fn fault_code(&mut self, code: CVal) {
-        let s = self.iconst(I32, i64::from(self.site));
+        let fail = self.b.create_block();
         let cont = self.b.create_block();
+        self.b.set_cold_block(fail);
+        self.b.ins().brif(code, fail, &[], cont, &[]);
+        self.b.seal_block(fail);
+        self.b.seal_block(cont);
+        self.b.switch_to_block(fail);
+        let s = self.iconst(I32, i64::from(self.site));
         self.b
             .ins()
-            .brif(code, self.fault_block, &[code.into(), s.into()], cont, &[]);
+            .jump(self.fault_block, &[code.into(), s.into()]);
         self.b.switch_to_block(cont);
     }
 
@@ -1080,12 +1161,17 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                     self.b.create_block(),
                 );
                 self.b.ins().brif(c, t, &[], e, &[]);
+                // Each block is sealed as soon as its predecessors are all
+                // known (see the loop below).
+                self.b.seal_block(t);
+                self.b.seal_block(e);
                 self.b.switch_to_block(t);
                 self.block(then_body)?;
-                self.b.ins().jump(end, &[]);
+                self.goto(end);
                 self.b.switch_to_block(e);
                 self.block(else_body)?;
-                self.b.ins().jump(end, &[]);
+                self.goto(end);
+                self.b.seal_block(end);
                 self.b.switch_to_block(end);
             }
             StmtKind::Switch {
@@ -1093,31 +1179,39 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                 arms,
                 default,
             } => self.switch(selector, arms, default)?,
-            StmtKind::Loop { body, latch } => {
-                let (head, lat, exit) = (
-                    self.b.create_block(),
-                    self.b.create_block(),
-                    self.b.create_block(),
-                );
-                self.b.ins().jump(head, &[]);
-                self.b.switch_to_block(head);
-                self.loops.push((lat, exit));
-                self.block(body)?;
-                self.b.ins().jump(lat, &[]);
-                self.b.switch_to_block(lat);
-                self.block(latch)?;
-                self.loops.pop();
-                self.site = self.site_of((s.line, s.col));
-                self.step();
-                self.b.ins().jump(head, &[]);
-                self.b.switch_to_block(exit);
-            }
+            StmtKind::Loop { body, latch } => match self.versions.get(s).cloned() {
+                // Loop versioning: the check-free copy where the guard
+                // holds, the checked loop where it does not.
+                Some(v) if self.fast.is_none() => {
+                    let c = self.expr_s(&v.guard)?;
+                    let (fast, slow, join) = (
+                        self.b.create_block(),
+                        self.b.create_block(),
+                        self.b.create_block(),
+                    );
+                    self.b.ins().brif(c, fast, &[], slow, &[]);
+                    self.b.seal_block(fast);
+                    self.b.seal_block(slow);
+                    self.b.switch_to_block(fast);
+                    self.fast = Some(v);
+                    let r = self.emit_loop(s, body, latch);
+                    self.fast = None;
+                    r?;
+                    self.goto(join);
+                    self.b.switch_to_block(slow);
+                    self.emit_loop(s, body, latch)?;
+                    self.goto(join);
+                    self.b.seal_block(join);
+                    self.b.switch_to_block(join);
+                }
+                _ => self.emit_loop(s, body, latch)?,
+            },
             StmtKind::Break => {
                 let (_, exit) = *self
                     .loops
                     .last()
                     .ok_or_else(|| internal("BREAK outside a loop"))?;
-                self.b.ins().jump(exit, &[]);
+                self.goto(exit);
                 self.fresh();
             }
             StmtKind::Continue => {
@@ -1125,19 +1219,56 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                     .loops
                     .last()
                     .ok_or_else(|| internal("CONTINUE outside a loop"))?;
-                self.b.ins().jump(lat, &[]);
+                self.goto(lat);
                 self.fresh();
             }
             StmtKind::Return => {
-                self.b.ins().jump(self.ret_block, &[]);
+                self.goto(self.ret_block);
                 self.fresh();
             }
             StmtKind::Fault(k) => {
-                let t = self.iconst(I8, 1);
-                self.fault_if(t, *k);
+                if !self.b.is_unreachable() {
+                    let k = self.iconst(I32, i64::from(k.code()));
+                    let s = self.iconst(I32, i64::from(self.site));
+                    self.b.ins().jump(self.fault_block, &[k.into(), s.into()]);
+                    self.fresh();
+                }
             }
         }
         self.site = saved;
+        Ok(())
+    }
+
+    /// A loop: its header, body, latch (with the watchdog step) and exit.
+    fn emit_loop(&mut self, s: &Stmt, body: &[Stmt], latch: &[Stmt]) -> Result<(), Error> {
+        let (head, lat, exit) = (
+            self.b.create_block(),
+            self.b.create_block(),
+            self.b.create_block(),
+        );
+        self.goto(head);
+        self.b.switch_to_block(head);
+        self.loops.push((lat, exit));
+        self.block(body)?;
+        self.goto(lat);
+        self.b.seal_block(lat);
+        self.b.switch_to_block(lat);
+        self.block(latch)?;
+        self.loops.pop();
+        self.site = self.site_of((s.line, s.col));
+        self.step();
+        self.goto(head);
+        // The loop's blocks are sealed as soon as their
+        // predecessors are all known, the header after its back
+        // edge: inner loops first, so that the SSA builder's
+        // removal of redundant block parameters sees a variable
+        // the loop does not assign as the value it enters with, a
+        // loop invariant for Cranelift's code motion (sealed all at
+        // the end, an outer header keeps a parameter whose inputs
+        // are its own value and the value entering it).
+        self.b.seal_block(head);
+        self.b.seal_block(exit);
+        self.b.switch_to_block(exit);
         Ok(())
     }
 
@@ -1186,16 +1317,19 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                     let c = self.b.ins().band(a, b);
                     self.b.ins().brif(c, bodies[ai], &[], next, &[]);
                 }
+                self.b.seal_block(next);
                 self.b.switch_to_block(next);
             }
         }
         self.block(default)?;
-        self.b.ins().jump(end, &[]);
+        self.goto(end);
         for (ai, arm) in arms.iter().enumerate() {
+            self.b.seal_block(bodies[ai]);
             self.b.switch_to_block(bodies[ai]);
             self.block(&arm.body)?;
-            self.b.ins().jump(end, &[]);
+            self.goto(end);
         }
+        self.b.seal_block(end);
         self.b.switch_to_block(end);
         Ok(())
     }
@@ -1263,6 +1397,8 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         let cont = self.b.create_block();
         self.b.set_cold_block(fail);
         self.b.ins().brif(cond, fail, &[], cont, &[]);
+        self.b.seal_block(fail);
+        self.b.seal_block(cont);
         self.b.switch_to_block(fail);
         for (k, v) in values.into_iter().enumerate() {
             self.b
@@ -1329,6 +1465,31 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                 self.b.ins().uextend(I64, v)
             }
         };
+        // The native pointer, built beside the model address as the
+        // native address of the root (a function parameter plus the
+        // memory base: invariant, hoisted out of loops), a constant offset
+        // (fields, constant indices and every `-lo * stride` folded
+        // together) and the index terms (`i * stride`): a form the x86
+        // back end makes one addressing mode of.
+        let (mut n_root, mut n_k) = match &p.root {
+            Root::Var(v) if fixed => {
+                let lay = &self.g.l.pous[self.p];
+                let (off, in_frame) = (lay.offsets[*v], lay.in_frame[*v]);
+                let r = if in_frame { self.fp } else { self.this };
+                (self.b.ins().iadd(self.base, r), i64::from(off))
+            }
+            Root::This => (self.b.ins().iadd(self.base, self.this), 0),
+            Root::Global(g) => match self.g.d.global_offset(*g) {
+                Some(a) => (self.base, i64::from(a)),
+                None => (self.native(addr), 0),
+            },
+            Root::Direct(a) => match self.g.d.io_offset(a) {
+                Some(o) => (self.base, i64::from(o)),
+                None => (self.native(addr), 0),
+            },
+            _ => (self.native(addr), 0),
+        };
+        let mut n_terms: Vec<CVal> = Vec::new();
         let mut ty = match &p.root {
             Root::Var(v) => m.pous[self.p].var(*v).ty,
             Root::Global(g) => m.globals[*g].ty,
@@ -1342,6 +1503,7 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                 Proj::Field(i) => {
                     let off = self.g.l.field_offset(ty, *i);
                     addr = self.b.ins().iadd_imm(addr, i64::from(off));
+                    n_k = n_k.wrapping_add(i64::from(off));
                     ty = match m.types.kind(ty) {
                         TypeKind::Struct { fields } => fields
                             .get(*i as usize)
@@ -1353,6 +1515,7 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                 Proj::FbVar(fb, v) => {
                     let off = self.g.l.var_offset(*fb, *v);
                     addr = self.b.ins().iadd_imm(addr, i64::from(off));
+                    n_k = n_k.wrapping_add(i64::from(off));
                     let var = m.pous[*fb].var(*v);
                     ty = var.ty;
                     if var.storage == Storage::Ref {
@@ -1366,6 +1529,9 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                         }
                         addr = self.b.ins().uextend(I64, a);
                         fixed = false;
+                        n_root = self.native(addr);
+                        n_k = 0;
+                        n_terms.clear();
                     }
                 }
                 Proj::Index(idx) => {
@@ -1390,10 +1556,12 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                             }
                         }
                         addr = self.b.ins().iadd_imm(addr, off.max(0) as i64);
+                        n_k = n_k.wrapping_add(off.max(0) as i64);
                     } else {
                         for (k, (e, lo, hi)) in idx.iter().enumerate() {
                             // An index range analysis proves needs no check.
-                            let proven = self.proven.contains(e);
+                            let proven = self.proven.contains(e)
+                                || self.fast.as_ref().is_some_and(|v| v.covers(e));
                             // A checked index reports its own position.
                             let (at, e) = e.located();
                             let site = match at {
@@ -1424,6 +1592,17 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                             let mult = mults[k].clamp(0, i64::MAX as i128) as i64;
                             let off = self.b.ins().imul_imm(rel, mult);
                             addr = self.b.ins().iadd(addr, off);
+                            // (i - lo) * mult = i * mult - lo * mult, in
+                            // wrapping 64-bit arithmetic as the address.
+                            n_k = n_k.wrapping_sub(lo.wrapping_mul(mult));
+                            let term = if mult == 1 {
+                                i
+                            } else if mult > 0 && (mult as u64).is_power_of_two() {
+                                self.b.ins().ishl_imm(i, i64::from(mult.trailing_zeros()))
+                            } else {
+                                self.b.ins().imul_imm(i, mult)
+                            };
+                            n_terms.push(term);
                         }
                     }
                     ty = if idx.len() < dims.len() { p.ty } else { elem };
@@ -1434,7 +1613,18 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                 }
             }
         }
-        Ok((PlaceAt { addr, part }, pending))
+        let mut ptr = self.b.ins().iadd_imm(n_root, n_k);
+        for t in n_terms {
+            ptr = self.b.ins().iadd(ptr, t);
+        }
+        Ok((
+            PlaceAt {
+                addr,
+                part,
+                ptr: Some(ptr),
+            },
+            pending,
+        ))
     }
 
     /// An integer index as a signed 64-bit value.
@@ -1455,7 +1645,10 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
     }
 
     fn load_place(&mut self, pl: &PlaceAt, ty: TypeId) -> Result<V, Error> {
-        let ptr = self.native(pl.addr);
+        let ptr = match pl.ptr {
+            Some(p) => p,
+            None => self.native(pl.addr),
+        };
         if let Some((width, size, index)) = pl.part {
             let w = self
                 .b
@@ -1497,7 +1690,10 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
 
     /// Stores a value of type `vt` into a place of type `pt`.
     fn store(&mut self, pl: &PlaceAt, v: V, vt: TypeId, pt: TypeId) -> Result<(), Error> {
-        let ptr = self.native(pl.addr);
+        let ptr = match pl.ptr {
+            Some(p) => p,
+            None => self.native(pl.addr),
+        };
         if let Some((width, size, index)) = pl.part {
             let V::S(x) = v else {
                 return Err(internal("a bit part of a non-scalar"));
@@ -1895,8 +2091,12 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
             BinOp::Sub => self.b.ins().isub(a, b),
             BinOp::Mul => self.b.ins().imul(a, b),
             BinOp::Div | BinOp::Mod if !fl => {
-                let z = self.b.ins().icmp_imm(IntCC::Equal, b, 0);
-                self.fault_if(z, FaultKind::DivisionByZero);
+                // A constant divisor other than 0 needs no test (Cranelift
+                // folds the comparison, not the branch on it).
+                if self.const_of(b).is_none_or(|d| d == 0) {
+                    let z = self.b.ins().icmp_imm(IntCC::Equal, b, 0);
+                    self.fault_if(z, FaultKind::DivisionByZero);
+                }
                 let div = op == BinOp::Div;
                 if signed {
                     // wrapping_div/rem: MIN / -1 is MIN, MIN % -1 is 0 (a
@@ -1968,6 +2168,7 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         let st = self.b.inst_results(call)[0];
         let cont = self.b.create_block();
         self.b.ins().brif(st, self.prop_block, &[], cont, &[]);
+        self.b.seal_block(cont);
         self.b.switch_to_block(cont);
         self.reload();
         Ok(())
@@ -2011,7 +2212,11 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         }
         for (var, v, vt) in given {
             let addr = self.b.ins().iadd_imm(cf, i64::from(lay.offsets[var]));
-            let pl = PlaceAt { addr, part: None };
+            let pl = PlaceAt {
+                addr,
+                part: None,
+                ptr: None,
+            };
             self.store(&pl, v, vt, callee.vars[var].ty)?;
         }
         for (var, a) in refs {
@@ -2027,7 +2232,14 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         let result = match callee.result {
             Some(r) => {
                 let addr = self.b.ins().iadd_imm(cf, i64::from(lay.offsets[r]));
-                let v = self.load_place(&PlaceAt { addr, part: None }, callee.vars[r].ty)?;
+                let v = self.load_place(
+                    &PlaceAt {
+                        addr,
+                        part: None,
+                        ptr: None,
+                    },
+                    callee.vars[r].ty,
+                )?;
                 self.keep(v, ty, true)
             }
             None => V::S(self.iconst(I8, 0)),
@@ -2047,6 +2259,7 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
             &PlaceAt {
                 addr: src,
                 part: None,
+                ptr: None,
             },
             src_ty,
         )?;
@@ -2089,7 +2302,16 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
         for (v, e) in inputs {
             let val = self.expr(e)?;
             let addr = self.b.ins().iadd_imm(inst, i64::from(lay.offsets[*v]));
-            self.store(&PlaceAt { addr, part: None }, val, e.ty, fbp.var(*v).ty)?;
+            self.store(
+                &PlaceAt {
+                    addr,
+                    part: None,
+                    ptr: None,
+                },
+                val,
+                e.ty,
+                fbp.var(*v).ty,
+            )?;
         }
         for (v, p) in inouts {
             let a = self.place(p)?.addr;

@@ -75,6 +75,257 @@ impl Proven {
     }
 }
 
+/// Loop versioning of the index checks range analysis cannot remove.
+///
+/// An innermost FOR loop whose body indexes arrays with `v + c`, `c + v`,
+/// `v - c` or `v` (`v` its control variable, `c` a constant) gets a guard:
+/// a condition on the control variable and the hidden end at the loop's
+/// entry under which every value `v` takes in the body (the loop runs `v`
+/// monotonically from its value at entry to the end, never past it: the
+/// exit test opens the body, the latch's overflow test leaves before a
+/// wrap) puts each of those indices inside its dimension, without
+/// wrapping in its type. A back end emits the loop twice, behind the
+/// guard: a copy without those checks, and the checked loop where the
+/// guard fails. Faults stay exact: the check-free copy runs only where no
+/// guarded index of any iteration can be out of bounds, so it is the
+/// checked loop whenever one would fault (same iteration, same report).
+///
+/// Only loops whose body (not counting the latch) has no nested loop (one
+/// copy each: no growth with depth), no call of a POU (a callee could
+/// change the control variable through a reference), no dereference, no
+/// `THIS`, no `REF()`, and no assignment of the control variable or the
+/// end (the analyser refuses those, E0306: checked again here) are
+/// versioned; the indices range analysis already proves are left out of
+/// the guard.
+#[derive(Default, Debug)]
+pub struct Versions {
+    /// By address of the loop statement.
+    loops: FxHashMap<usize, Version>,
+}
+
+/// The guard of one versioned loop and the indices it makes safe.
+#[derive(Clone, Debug)]
+pub struct Version {
+    /// A BOOL expression, evaluated just before the loop.
+    pub guard: Expr,
+    /// Addresses of the index expressions (as in [`Proj::Index`]).
+    indices: FxHashSet<usize>,
+}
+
+impl Version {
+    /// Whether the index expression `e` needs no check in the loop's
+    /// check-free copy.
+    pub fn covers(&self, e: &Expr) -> bool {
+        self.indices.contains(&(e as *const Expr as usize))
+    }
+}
+
+impl Versions {
+    /// The versioned loops of `pou`'s body (`proven`: its proven indices).
+    pub fn of(m: &Module, pou: &Pou, proven: &Proven) -> Versions {
+        let mut loops = FxHashMap::default();
+        version_block(m, pou, proven, &pou.body, &mut loops);
+        Versions { loops }
+    }
+
+    /// The version of a loop statement, when it has one.
+    pub fn get(&self, s: &Stmt) -> Option<&Version> {
+        self.loops.get(&(s as *const Stmt as usize))
+    }
+
+    pub fn len(&self) -> usize {
+        self.loops.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.loops.is_empty()
+    }
+}
+
+fn version_block(
+    m: &Module,
+    pou: &Pou,
+    proven: &Proven,
+    stmts: &[Stmt],
+    out: &mut FxHashMap<usize, Version>,
+) {
+    for s in stmts {
+        match &s.kind {
+            StmtKind::If {
+                then_body,
+                else_body,
+                ..
+            } => {
+                version_block(m, pou, proven, then_body, out);
+                version_block(m, pou, proven, else_body, out);
+            }
+            StmtKind::Switch { arms, default, .. } => {
+                for a in arms {
+                    version_block(m, pou, proven, &a.body, out);
+                }
+                version_block(m, pou, proven, default, out);
+            }
+            StmtKind::Loop { body, latch } => {
+                version_block(m, pou, proven, body, out);
+                version_block(m, pou, proven, latch, out);
+                if let Some(v) = version_of(m, pou, proven, body) {
+                    out.insert(s as *const Stmt as usize, v);
+                }
+            }
+            _ => {}
+        }
+    }
+}
+
+/// Whether a body may change `vars` other than by its latch, or holds what
+/// versioning leaves alone (a nested loop, a call, a reference).
+fn disqualified(stmts: &[Stmt], vars: &[VarId]) -> bool {
+    let mut bad = false;
+    for s in stmts {
+        match &s.kind {
+            StmtKind::Assign { place, .. } => {
+                if matches!(place.root, Root::Var(v) if vars.contains(&v)) {
+                    return true;
+                }
+            }
+            StmtKind::CallFb { .. } | StmtKind::Loop { .. } => return true,
+            StmtKind::If {
+                then_body,
+                else_body,
+                ..
+            } => bad |= disqualified(then_body, vars) || disqualified(else_body, vars),
+            StmtKind::Switch { arms, default, .. } => {
+                bad |=
+                    arms.iter().any(|a| disqualified(&a.body, vars)) || disqualified(default, vars)
+            }
+            _ => {}
+        }
+    }
+    if bad {
+        return true;
+    }
+    let (mut calls, mut refs) = (false, false);
+    crate::visit::walk(
+        stmts,
+        &mut |e| calls |= matches!(e.kind, ExprKind::CallFn { .. } | ExprKind::Ref(_)),
+        &mut |p| refs |= matches!(p.root, Root::Deref(_) | Root::This),
+    );
+    calls || refs
+}
+
+/// `v + c` as `c` (`v`, `c + v`, `v - c` too), where `v` is `var` read
+/// whole.
+fn offset_of(e: &Expr, var: VarId) -> Option<i128> {
+    let is_var = |x: &Expr| {
+        matches!(&x.unlocated().kind, ExprKind::Load(p)
+            if p.proj.is_empty() && matches!(p.root, Root::Var(v) if v == var))
+    };
+    let konst = |x: &Expr| match &x.unlocated().kind {
+        ExprKind::Const(Value::Int(c)) => Some(*c),
+        _ => None,
+    };
+    let e = e.unlocated();
+    if is_var(e) {
+        return Some(0);
+    }
+    match &e.kind {
+        ExprKind::Binary(BinOp::Add, x, y) if is_var(x) => konst(y),
+        ExprKind::Binary(BinOp::Add, x, y) if is_var(y) => konst(x),
+        ExprKind::Binary(BinOp::Sub, x, y) if is_var(x) => konst(y)?.checked_neg(),
+        _ => None,
+    }
+}
+
+fn version_of(m: &Module, pou: &Pou, proven: &Proven, body: &[Stmt]) -> Option<Version> {
+    // The FOR's exit test opens the body: `IF v > end THEN BREAK` (a
+    // positive step), `IF v < end THEN BREAK` (a negative one).
+    let StmtKind::If { cond, .. } = &body.first()?.kind else {
+        return None;
+    };
+    let ExprKind::Binary(op, a, b) = &cond.kind else {
+        return None;
+    };
+    let up = match op {
+        BinOp::Gt => true,
+        BinOp::Lt => false,
+        _ => return None,
+    };
+    let (ExprKind::Load(pv), ExprKind::Load(pe)) = (&a.kind, &b.kind) else {
+        return None;
+    };
+    let (Root::Var(v), Root::Var(end)) = (&pv.root, &pe.root) else {
+        return None;
+    };
+    let (v, end) = (*v, *end);
+    if !pv.proj.is_empty()
+        || !pe.proj.is_empty()
+        || pou.var(end).hidden != Some("end")
+        || pou.var(v).storage == Storage::Ref
+    {
+        return None;
+    }
+    let vt = pou.var(v).ty;
+    let (tmin, tmax) = m.types.scalar(vt).and_then(int_range)?;
+    // Values compared as 64-bit integers by the back ends.
+    if tmin < i128::from(i64::MIN) || tmax > i128::from(i64::MAX) {
+        return None;
+    }
+    if disqualified(body, &[v, end]) {
+        return None;
+    }
+    // Every value of `v` in the body must lie in lo..=hi.
+    let (mut lo, mut hi) = (tmin, tmax);
+    let mut indices = FxHashSet::default();
+    crate::visit::places(body, &mut |p| {
+        for proj in &p.proj {
+            let Proj::Index(idx) = proj else { continue };
+            for (e, dlo, dhi) in idx {
+                if proven.contains(e) {
+                    continue;
+                }
+                let Some(c) = offset_of(e, v) else { continue };
+                let Some((emin, emax)) = m.types.scalar(e.ty).and_then(int_range) else {
+                    continue;
+                };
+                // v + c inside the dimension and inside its own type (no
+                // wrap): v in (max(dlo, emin) - c)..=(min(dhi, emax) - c).
+                lo = lo.max((*dlo).max(emin) - c);
+                hi = hi.min((*dhi).min(emax) - c);
+                indices.insert(e as *const Expr as usize);
+            }
+        }
+    });
+    if indices.is_empty() || lo > hi {
+        return None;
+    }
+    let bool_ty = cond.ty;
+    let load = |x: VarId| Expr {
+        kind: ExprKind::Load(Place {
+            root: Root::Var(x),
+            proj: Vec::new(),
+            ty: vt,
+        }),
+        ty: vt,
+    };
+    let konst = |c: i128| Expr {
+        kind: ExprKind::Const(Value::Int(c)),
+        ty: vt,
+    };
+    let cmp = |op: BinOp, x: Expr, y: Expr| Expr {
+        kind: ExprKind::Binary(op, Box::new(x), Box::new(y)),
+        ty: bool_ty,
+    };
+    // The first value is `v` at entry, the last at most `end` (counting
+    // up) or the reverse.
+    let (first, last) = if up { (v, end) } else { (end, v) };
+    let guard = cmp(
+        BinOp::And,
+        cmp(BinOp::Ge, load(first), konst(lo)),
+        cmp(BinOp::Le, load(last), konst(hi)),
+    );
+    Some(Version { guard, indices })
+}
+
 /// Statements visited at most (loops are walked again when an induction
 /// assumption fails): past it, nothing is proven.
 const BUDGET: u32 = 200_000;
@@ -783,6 +1034,73 @@ mod tests {
             }
         });
         out
+    }
+
+    /// For each loop of the program's body with a version: the guard's
+    /// bounds and how many indices it covers.
+    fn versions(src: &str) -> Vec<(i128, i128, usize)> {
+        let m = crate::test_module(src);
+        let pou = m
+            .pous
+            .iter()
+            .find(|p| !p.is_std && p.kind == stc_syntax::ast::PouKind::Program)
+            .expect("a program");
+        let proven = Proven::of(&m, pou);
+        let vs = Versions::of(&m, pou, &proven);
+        let mut out = Vec::new();
+        fn walk(stmts: &[Stmt], vs: &Versions, out: &mut Vec<(i128, i128, usize)>) {
+            for s in stmts {
+                match &s.kind {
+                    StmtKind::Loop { body, .. } => {
+                        if let Some(v) = vs.get(s) {
+                            let konst = |e: &Expr| match &e.kind {
+                                ExprKind::Binary(_, _, c) => match &c.kind {
+                                    ExprKind::Const(Value::Int(x)) => *x,
+                                    _ => i128::MIN,
+                                },
+                                _ => i128::MIN,
+                            };
+                            let ExprKind::Binary(BinOp::And, a, b) = &v.guard.kind else {
+                                panic!("a guard is a conjunction");
+                            };
+                            out.push((konst(a), konst(b), v.indices.len()));
+                        }
+                        walk(body, vs, out);
+                    }
+                    StmtKind::If {
+                        then_body,
+                        else_body,
+                        ..
+                    } => {
+                        walk(then_body, vs, out);
+                        walk(else_body, vs, out);
+                    }
+                    _ => {}
+                }
+            }
+        }
+        walk(&pou.body, &vs, &mut out);
+        out
+    }
+
+    #[test]
+    fn for_loops_with_unproven_affine_indices_are_versioned() {
+        // a[i + 1] and a[i - 1] of 0..9: i in 1..8; a[i + k] (k not
+        // constant) is left checked; the outer loop (a nested loop)
+        // and the loop with a call are not versioned; the constant FOR
+        // is proven, nothing to version.
+        let src = "FUNCTION F : DINT VAR_INPUT x : DINT; END_VAR F := x; END_FUNCTION
+            PROGRAM P VAR a : ARRAY[0..9] OF DINT; i, j, k, n : DINT; END_VAR
+            FOR j := 0 TO n DO
+                FOR i := 1 TO n DO
+                    a[i + 1] := a[i - 1] + a[i + k];
+                END_FOR;
+            END_FOR;
+            FOR i := 0 TO n DO a[i] := F(i); END_FOR;
+            FOR i := n TO 0 BY -1 DO a[i] := 0; END_FOR;
+            FOR i := 0 TO 9 DO a[i] := 0; END_FOR;
+        END_PROGRAM";
+        assert_eq!(versions(src), vec![(1, 8, 2), (0, 9, 1)]);
     }
 
     #[test]

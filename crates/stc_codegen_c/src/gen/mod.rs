@@ -50,6 +50,10 @@ struct Func {
     ranges: Vec<(VarId, i128, i128)>,
     /// The indices range analysis proves inside their bounds.
     proven: stc_ir::ranges::Proven,
+    /// The loops emitted twice behind a guard (`stc_ir::ranges::Versions`),
+    /// and inside the check-free copy of one, its version.
+    versions: stc_ir::ranges::Versions,
+    fast: Option<stc_ir::ranges::Version>,
     /// By variable: the C local holding it inside the body, when it is
     /// held in one (`stc_ir::visit::register_vars`), and whether the body
     /// assigns it (then it is stored back before calls and at exits).
@@ -497,11 +501,14 @@ impl<'a> Gen<'a> {
         let m = self.m;
         let pou = &m.pous[p];
         let function = pou.kind == PouKind::Function;
+        let proven = stc_ir::ranges::Proven::of(m, pou);
+        let versions = stc_ir::ranges::Versions::of(m, pou, &proven);
         self.f = Func {
             pou: p,
             function,
             depth: 1,
-            proven: stc_ir::ranges::Proven::of(m, pou),
+            proven,
+            versions,
             ..Func::default()
         };
         let line = pou.body.first().map_or(1, |s| s.line);
@@ -702,6 +709,33 @@ impl<'a> Gen<'a> {
         Ok(())
     }
 
+    /// A loop: `for (;;)` with the watchdog step, the body and the latch.
+    fn emit_loop(&mut self, body: &[Stmt], latch: &[Stmt]) -> Result<(), Error> {
+        let label = if !latch.is_empty() && uses_continue(body) {
+            let l = format!("L{}", self.f.next_label);
+            self.f.next_label += 1;
+            Some(l)
+        } else {
+            None
+        };
+        let site = self.f.site;
+        self.open("for (;;) {".into());
+        let bail = self.bail();
+        self.line(format!("if (stc_step({site}U) != 0U) {{ {bail} }}"));
+        self.f.loops.push(label.clone());
+        self.block(body)?;
+        self.f.loops.pop();
+        if let Some(l) = &label {
+            self.line(format!("{l}: ;"));
+        }
+        // The control variable leaves its range in the latch.
+        let saved = std::mem::take(&mut self.f.ranges);
+        self.block(latch)?;
+        self.f.ranges = saved;
+        self.close("}");
+        Ok(())
+    }
+
     fn stmt(&mut self, s: &Stmt) -> Result<(), Error> {
         self.f.site = self.site_of(s.line, s.col);
         match &s.kind {
@@ -796,31 +830,24 @@ impl<'a> Gen<'a> {
                 }
                 Ok(())
             }
-            StmtKind::Loop { body, latch } => {
-                let label = if !latch.is_empty() && uses_continue(body) {
-                    let l = format!("L{}", self.f.next_label);
-                    self.f.next_label += 1;
-                    Some(l)
-                } else {
-                    None
-                };
-                let site = self.f.site;
-                self.open("for (;;) {".into());
-                let bail = self.bail();
-                self.line(format!("if (stc_step({site}U) != 0U) {{ {bail} }}"));
-                self.f.loops.push(label.clone());
-                self.block(body)?;
-                self.f.loops.pop();
-                if let Some(l) = &label {
-                    self.line(format!("{l}: ;"));
+            StmtKind::Loop { body, latch } => match self.f.versions.get(s).cloned() {
+                // Loop versioning: the check-free copy where the guard
+                // holds, the checked loop where it does not.
+                Some(v) if self.f.fast.is_none() => {
+                    let c = self.expr(&v.guard)?;
+                    self.open(format!("if ({c} != 0U) {{"));
+                    self.f.fast = Some(v);
+                    let r = self.emit_loop(body, latch);
+                    self.f.fast = None;
+                    r?;
+                    self.f.depth = self.f.depth.saturating_sub(1);
+                    self.open("} else {".into());
+                    self.emit_loop(body, latch)?;
+                    self.close("}");
+                    Ok(())
                 }
-                // The control variable leaves its range in the latch.
-                let saved = std::mem::take(&mut self.f.ranges);
-                self.block(latch)?;
-                self.f.ranges = saved;
-                self.close("}");
-                Ok(())
-            }
+                _ => self.emit_loop(body, latch),
+            },
             StmtKind::Break => {
                 self.line("break;".into());
                 Ok(())
@@ -1094,13 +1121,15 @@ impl<'a> Gen<'a> {
                         matches!(e.kind, ExprKind::Const(Value::Int(_)))
                             || stc_ir::faults::index_in_range(e, &g.f.ranges, lo, hi)
                             || g.f.proven.contains(e)
+                            || g.f.fast.as_ref().is_some_and(|v| v.covers(e))
                     };
                     let signed = idx.iter().all(|(e, lo, hi)| unchecked(self, e, *lo, *hi));
                     let mut flat = Vec::new();
                     let mut checks = Vec::new();
                     for (k, (e, lo, hi)) in idx.iter().enumerate() {
                         let mult: i128 = counts[k + 1..].iter().product();
-                        let proven = self.f.proven.contains(e);
+                        let proven = self.f.proven.contains(e)
+                            || self.f.fast.as_ref().is_some_and(|v| v.covers(e));
                         // A checked index reports its own position.
                         let (at, e) = e.located();
                         if let ExprKind::Const(Value::Int(i)) = &e.kind {

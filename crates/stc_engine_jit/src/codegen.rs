@@ -1111,6 +1111,34 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
 
     // ----- statements ---------------------------------------------------------------
 
+    /// Branches on `c` to the code `then` emits and the code `other`
+    /// emits, both going on after them. Each block is sealed as soon as
+    /// its predecessors are all known (see `emit_loop`).
+    fn two_way(
+        &mut self,
+        c: cranelift_codegen::ir::Value,
+        then: impl FnOnce(&mut Self) -> Result<(), Error>,
+        other: impl FnOnce(&mut Self) -> Result<(), Error>,
+    ) -> Result<(), Error> {
+        let (t, e, end) = (
+            self.b.create_block(),
+            self.b.create_block(),
+            self.b.create_block(),
+        );
+        self.b.ins().brif(c, t, &[], e, &[]);
+        self.b.seal_block(t);
+        self.b.seal_block(e);
+        self.b.switch_to_block(t);
+        then(self)?;
+        self.goto(end);
+        self.b.switch_to_block(e);
+        other(self)?;
+        self.goto(end);
+        self.b.seal_block(end);
+        self.b.switch_to_block(end);
+        Ok(())
+    }
+
     fn block(&mut self, stmts: &[Stmt]) -> Result<(), Error> {
         for s in stmts {
             self.stmt(s)?;
@@ -1155,24 +1183,11 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                 else_body,
             } => {
                 let c = self.expr_s(cond)?;
-                let (t, e, end) = (
-                    self.b.create_block(),
-                    self.b.create_block(),
-                    self.b.create_block(),
-                );
-                self.b.ins().brif(c, t, &[], e, &[]);
-                // Each block is sealed as soon as its predecessors are all
-                // known (see the loop below).
-                self.b.seal_block(t);
-                self.b.seal_block(e);
-                self.b.switch_to_block(t);
-                self.block(then_body)?;
-                self.goto(end);
-                self.b.switch_to_block(e);
-                self.block(else_body)?;
-                self.goto(end);
-                self.b.seal_block(end);
-                self.b.switch_to_block(end);
+                self.two_way(
+                    c,
+                    |g: &mut Self| g.block(then_body),
+                    |g: &mut Self| g.block(else_body),
+                )?;
             }
             StmtKind::Switch {
                 selector,
@@ -1184,25 +1199,16 @@ impl<'g, 'a, 'm, 'f> Fx<'g, 'a, 'm, 'f> {
                 // holds, the checked loop where it does not.
                 Some(v) if self.fast.is_none() => {
                     let c = self.expr_s(&v.guard)?;
-                    let (fast, slow, join) = (
-                        self.b.create_block(),
-                        self.b.create_block(),
-                        self.b.create_block(),
-                    );
-                    self.b.ins().brif(c, fast, &[], slow, &[]);
-                    self.b.seal_block(fast);
-                    self.b.seal_block(slow);
-                    self.b.switch_to_block(fast);
-                    self.fast = Some(v);
-                    let r = self.emit_loop(s, body, latch);
-                    self.fast = None;
-                    r?;
-                    self.goto(join);
-                    self.b.switch_to_block(slow);
-                    self.emit_loop(s, body, latch)?;
-                    self.goto(join);
-                    self.b.seal_block(join);
-                    self.b.switch_to_block(join);
+                    self.two_way(
+                        c,
+                        |g: &mut Self| {
+                            g.fast = Some(v);
+                            let r = g.emit_loop(s, body, latch);
+                            g.fast = None;
+                            r
+                        },
+                        |g: &mut Self| g.emit_loop(s, body, latch),
+                    )?;
                 }
                 _ => self.emit_loop(s, body, latch)?,
             },

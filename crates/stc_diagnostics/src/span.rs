@@ -83,6 +83,12 @@ pub struct SourceFile {
 }
 
 impl SourceFile {
+    /// Whether the file is the standard library's (named `<...>`: the
+    /// prelude), not one of the user's.
+    pub fn is_library(&self) -> bool {
+        self.name.starts_with('<')
+    }
+
     /// Byte offsets (relative to the file) where each line starts.
     pub fn line_starts(&self) -> &[u32] {
         &self.line_starts

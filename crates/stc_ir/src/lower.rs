@@ -153,10 +153,9 @@ pub fn lower(ast: &Ast, analysis: Analysis, interner: &Interner, sources: &Sourc
             retain: g.var.retain,
             location: g.var.location.clone(),
             span: g.var.span,
-            // The library's files are named `<...>` (the prelude).
             library: sources
                 .file_of(g.var.span.lo)
-                .is_some_and(|f| sources.file(f).name.starts_with('<')),
+                .is_some_and(|f| sources.file(f).is_library()),
         })
         .collect();
     Module {

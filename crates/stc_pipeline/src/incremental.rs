@@ -65,12 +65,7 @@ impl Mark {
 fn parse_one(parsed: &mut Parsed, name: String, text: String, opts: &Options) -> Option<Span> {
     let id = parsed.sources.add(name, text)?;
     let f = parsed.sources.file(id);
-    // The standard library (`<stdlib>`) is written in the 3rd edition.
-    let iec2 = opts.iec2 && !f.name.starts_with('<');
-    // Its spellings give way to the user's (`Interner::library`).
-    parsed.interner.library = f.name.starts_with('<');
-    let r = stc_syntax::parse_file_in(&f.text, f.base, &mut parsed.ast, &mut parsed.interner, iec2);
-    parsed.interner.library = false;
+    let r = stc_syntax::parse_source_in(f, &mut parsed.ast, &mut parsed.interner, opts.iec2);
     parsed.diagnostics.extend(r.diagnostics);
     Some(f.span())
 }

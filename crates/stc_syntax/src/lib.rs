@@ -18,4 +18,6 @@ pub mod sfc;
 pub mod token;
 
 pub use intern::{Interner, Symbol};
-pub use parser::{parse_file, parse_file_in, parse_project, parse_project_in, FileParse};
+pub use parser::{
+    parse_file, parse_file_in, parse_project, parse_project_in, parse_source_in, FileParse,
+};

@@ -1009,13 +1009,23 @@ pub fn parse_project_in(
     let mut ast = Ast::default();
     let mut diags = Vec::new();
     for (_, f) in sources.files() {
-        // The standard library (`<stdlib>`) is written in the 3rd edition.
-        let edition2 = iec2 && !f.name.starts_with('<');
-        // Its spellings give way to the user's (`Interner::library`).
-        interner.library = f.name.starts_with('<');
-        let r = parse_file_in(&f.text, f.base, &mut ast, interner, edition2);
-        diags.extend(r.diagnostics);
+        diags.extend(parse_source_in(f, &mut ast, interner, iec2).diagnostics);
     }
-    interner.library = false;
     (ast, diags)
+}
+
+/// One file of a project into `ast` ([`parse_file_in`]): the standard
+/// library's ([`stc_diagnostics::SourceFile::is_library`]) is written in
+/// the 3rd edition whatever `iec2` says, and its spellings give way to
+/// the user's (`Interner::library`).
+pub fn parse_source_in(
+    f: &stc_diagnostics::SourceFile,
+    ast: &mut Ast,
+    interner: &mut Interner,
+    iec2: bool,
+) -> FileParse {
+    interner.library = f.is_library();
+    let r = parse_file_in(&f.text, f.base, ast, interner, iec2 && !f.is_library());
+    interner.library = false;
+    r
 }
